@@ -1,0 +1,91 @@
+"""Dormand–Prince 5(4) Runge–Kutta step with its 4th-order dense output, compiled.
+
+Generic numerics: nothing here knows about blocks; the caller evaluates its own right-hand side
+between the stages. The tableau is the one of
+Dormand & Prince (1980) as used by ``scipy.integrate.RK45`` (Shampine's dense output).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0])
+A = np.array(
+    [
+        [0.0, 0.0, 0.0, 0.0, 0.0],
+        [1 / 5, 0.0, 0.0, 0.0, 0.0],
+        [3 / 40, 9 / 40, 0.0, 0.0, 0.0],
+        [44 / 45, -56 / 15, 32 / 9, 0.0, 0.0],
+        [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0.0],
+        [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656],
+    ]
+)
+BW = np.array([35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84])
+# Difference between the 5th- and embedded 4th-order weights (the error estimator).
+E = np.array([-71 / 57600, 0.0, 71 / 16695, -71 / 1920, 17253 / 339200, -22 / 525, 1 / 40])
+# Dense output polynomial coefficients (Shampine 1986), columns multiply x, x², x³, x⁴.
+P = np.array(
+    [
+        [1.0, -8048581381 / 2820520608, 8663915743 / 2820520608, -12715105075 / 11282082432],
+        [0.0, 0.0, 0.0, 0.0],
+        [0.0, 131558114200 / 32700410799, -68118460800 / 10900136933, 87487479700 / 32700410799],
+        [0.0, -1754552775 / 470086768, 14199869525 / 1410260304, -10690763975 / 1880347072],
+        [0.0, 127303824393 / 49829197408, -318862633887 / 49829197408, 701980252875 / 199316789632],
+        [0.0, -282668133 / 205662961, 2019193451 / 616988883, -1453857185 / 822651844],
+        [0.0, 40617522 / 29380423, -110615467 / 29380423, 69997945 / 29380423],
+    ]
+)
+ORDER = 5
+
+
+@njit(cache=True)
+def stage_input(y, K, h, stage, out):
+    """State at which stage ``stage`` (1…5) is evaluated: y + h·Σ_k A[stage, k]·K[k].
+
+    The caller evaluates its right-hand side there into K[stage]; after stage 5 it calls
+    :func:`advance` and evaluates K[6] at (t + h, y_new). (Keeping the right-hand side out of
+    this module lets the compiled solver be cached on disk: numba cannot cache a function that
+    receives another compiled function as an argument.)
+    """
+    for j in range(y.shape[0]):
+        acc = 0.0
+        for k in range(stage):
+            acc += A[stage, k] * K[k, j]
+        out[j] = y[j] + h * acc
+
+
+@njit(cache=True)
+def advance(y, K, h, y_new):
+    """5th-order solution y + h·Σ b_k K[k] into ``y_new``."""
+    for j in range(y.shape[0]):
+        acc = 0.0
+        for k in range(6):
+            acc += BW[k] * K[k, j]
+        y_new[j] = y[j] + h * acc
+
+
+@njit(cache=True)
+def error_norm(y, y_new, K, h, rtol, atol, n_controlled):
+    """RMS of the local error estimate scaled by atol + rtol·max(|y|, |y_new|)."""
+    total = 0.0
+    for j in range(n_controlled):
+        e = 0.0
+        for k in range(7):
+            e += E[k] * K[k, j]
+        scale = atol + rtol * max(abs(y[j]), abs(y_new[j]))
+        total += (h * e / scale) ** 2
+    return np.sqrt(total / n_controlled)
+
+
+@njit(cache=True)
+def dense(y, K, h, x, out):
+    """Interpolated state at t + x·h, 0 ≤ x ≤ 1, into ``out``."""
+    x2 = x * x
+    x3 = x2 * x
+    x4 = x3 * x
+    for j in range(y.shape[0]):
+        acc = 0.0
+        for k in range(7):
+            acc += K[k, j] * (P[k, 0] * x + P[k, 1] * x2 + P[k, 2] * x3 + P[k, 3] * x4)
+        out[j] = y[j] + h * acc

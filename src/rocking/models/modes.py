@@ -1,0 +1,136 @@
+"""Which regime holds, and when it stops holding: the guards and the regime selection.
+
+Guards (event functions) are positive while the current regime is consistent and cross zero
+when it ends (derivation §3.5; paper Eqs. 4, 14, 24–29 corrected, P10–P12):
+
+* pedestal held:   μs·N ∓ F_req              (paper Eq. 4 / Eq. 29 with |·| and N, P11)
+* pedestal slides: σ·u̇                        (slide ends when the velocity vanishes, P12)
+* statue at rest:  (g + a_v)·tan α ∓ (a_g + ü) (rocking onset, Eq. 5's |ẍg| > g b/h, P10)
+* statue rocks:    S·θ (impact), α − |θ| (statically unstable), π/2 − |θ| (fallen)
+
+Selection rule, used at t = 0, after every event and at every jump of the floor motion:
+candidates are tried with the fewest moving degrees of freedom first — pedestal held before
+sliding, statue at rest before rocking — and the first one whose forces are consistent is
+kept (held: |F| ≤ μs·N; starting to slide: σ·ü > 0; at rest: |a_base| ≤ G tan α; starting to
+rock: S·θ̈ > 0). Rigid bodies with Coulomb friction can admit more than one consistent
+regime; this rule makes the choice unique and is tested.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .dynamics import accelerations, floor_forces, friction_normal
+from .parameters import ALPHA, CAN_SLIDE, G, MU_S
+
+SLIP_TO_NEGATIVE, SLIP_TO_POSITIVE, STOP, ROCK_TO_NEGATIVE, ROCK_TO_POSITIVE, IMPACT, EXCEED, FALL = range(8)
+N_GUARDS = 8
+
+
+@njit(cache=True)
+def evaluate_guards(p, sig, s, y, a, av, exceeded, out):
+    """Fill ``out`` (length N_GUARDS) with the guard values; inactive guards are +1."""
+    for i in range(N_GUARDS):
+        out[i] = 1.0
+    u_dot, theta, theta_dot = y[1], y[2], y[3]
+    udd, thdd, _ = accelerations(p, sig, s, u_dot, theta, theta_dot, a, av)
+    if sig == 0:
+        if p[CAN_SLIDE] > 0.5:
+            f, n = floor_forces(p, s, theta, theta_dot, a, av, udd, thdd)
+            cap = p[MU_S] * friction_normal(p, n, av)
+            out[SLIP_TO_NEGATIVE] = cap - f
+            out[SLIP_TO_POSITIVE] = cap + f
+    else:
+        out[STOP] = sig * u_dot
+    if s == 0:
+        threshold = (p[G] + av) * math.tan(p[ALPHA])
+        base = a + udd
+        out[ROCK_TO_NEGATIVE] = threshold - base
+        out[ROCK_TO_POSITIVE] = threshold + base
+    else:
+        out[IMPACT] = s * theta
+        if not exceeded:
+            out[EXCEED] = p[ALPHA] - abs(theta)
+        out[FALL] = 0.5 * math.pi - abs(theta)
+
+
+@njit(cache=True)
+def _sign(x):
+    return 1 if x > 0.0 else -1
+
+
+@njit(cache=True)
+def select_regime(p, y, s_now, a, av, forbid_stick, forbid_rest):
+    """Return (sig, s, consistent) for the state y at an instant with floor accelerations a, av.
+
+    ``s_now`` is the statue's pivot if it is rocking (needed when θ = 0 right after an impact).
+    ``forbid_stick``/``forbid_rest``: a guard has just fired, so the held/rest regime is known
+    to be left even though its test is exactly tied at this instant.
+    """
+    u_dot, theta, theta_dot = y[1], y[2], y[3]
+    moving = u_dot != 0.0
+    rocking = s_now != 0 and (theta != 0.0 or theta_dot != 0.0)
+    grav = p[G] + av
+    threshold = grav * math.tan(p[ALPHA])
+
+    # Preferred slip direction: opposite to the force the floor would need to hold the base.
+    s_guess = s_now if rocking else 0
+    udd0, thdd0, _ = accelerations(p, 0, s_guess, u_dot, theta, theta_dot, a, av)
+    f0, _ = floor_forces(p, s_guess, theta, theta_dot, a, av, udd0, thdd0)
+    sig_pref = -_sign(f0)
+
+    sig_list = np.zeros(3, dtype=np.int64)
+    n_sig = 0
+    if moving:
+        sig_list[0] = 1 if u_dot > 0.0 else -1
+        n_sig = 1
+    elif p[CAN_SLIDE] < 0.5:
+        n_sig = 1
+    else:
+        if not forbid_stick:
+            n_sig = 1
+        sig_list[n_sig] = sig_pref
+        sig_list[n_sig + 1] = -sig_pref
+        n_sig += 2
+
+    first_sig, first_s = sig_list[0], s_guess
+    for i in range(n_sig):
+        sig = sig_list[i]
+        # Statue candidates, preferred rocking direction opposite to the base acceleration.
+        s_list = np.zeros(3, dtype=np.int64)
+        n_s = 0
+        if rocking:
+            s_list[0] = s_now
+            n_s = 1
+        else:
+            udd_r, _, _ = accelerations(p, sig, 0, u_dot, theta, theta_dot, a, av)
+            s_pref = -_sign(a + udd_r)
+            if not forbid_rest:
+                n_s = 1
+            s_list[n_s] = s_pref
+            s_list[n_s + 1] = -s_pref
+            n_s += 2
+        for j in range(n_s):
+            s = s_list[j]
+            udd, thdd, ok = accelerations(p, sig, s, u_dot, theta, theta_dot, a, av)
+            if not ok:
+                continue
+            if sig == 0:
+                if p[CAN_SLIDE] > 0.5:
+                    f, n = floor_forces(p, s, theta, theta_dot, a, av, udd, thdd)
+                    if abs(f) > p[MU_S] * friction_normal(p, n, av):
+                        continue
+            elif not moving:
+                if sig * udd < 0.0 or (sig * udd == 0.0 and not forbid_stick):
+                    continue
+            if s == 0:
+                if abs(a + udd) > threshold:
+                    continue
+            elif not rocking:
+                if s * thdd < 0.0 or (s * thdd == 0.0 and not forbid_rest):
+                    continue
+            return sig, s, True
+    return first_sig, first_s, False

@@ -1,0 +1,244 @@
+"""What a simulation returns: time series, regime timeline, events, outcome, energy ledger."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from ..models.regimes import EventKind, Regime
+from ..solver import compiled as C
+
+_STATUS = {
+    C.STATUS_COMPLETED: ("completed", "the motion was simulated to the end"),
+    C.STATUS_OVERTURNED: ("overturned", "the statue overturned (|θ| reached π/2)"),
+    C.STATUS_MAX_EVENTS: ("max_events", "stopped: too many events (raise simulation.max_events)"),
+    C.STATUS_SINGULAR: ("singular", "slide-rock equations singular (Painlevé indeterminacy, μk ≥ 2/3?)"),
+    C.STATUS_STEP_FAILED: ("step_failed", "step size underflow"),
+}
+
+
+class Impact(NamedTuple):
+    """One impact of the statue (θ = 0, pivot switch). Velocities in m/s and rad/s, energy in J."""
+
+    time: float
+    u_dot_before: float
+    u_dot_after: float
+    theta_dot_before: float
+    theta_dot_after: float
+    energy_lost: float
+    friction_needed: float  # |Fx|/Fy of the floor impulse
+
+
+class Event(NamedTuple):
+    time: float
+    kind: EventKind
+    before: Regime
+    after: Regime
+
+
+def _opt(x: float) -> float | None:
+    return None if math.isnan(x) else float(x)
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class Response:
+    """The result of :func:`rocking.simulate`.
+
+    Time series (sampled on a uniform grid merged with the event instants; at an event both the
+    state before and after appear with the same time): ``t`` (s), ``u`` and ``u_dot`` (sliding of
+    the body on the floor relative to the floor, m and m/s), ``theta`` and ``theta_dot`` (statue,
+    rad and rad/s), ``regime`` (:class:`Regime` codes).
+    """
+
+    system: Any
+    motion: Any
+    options: Any
+    duration: float
+    parameters: np.ndarray = field(repr=False)
+    raw_summary: np.ndarray = field(repr=False)
+    t: np.ndarray = field(repr=False)
+    state: np.ndarray = field(repr=False)
+    regime_codes: np.ndarray = field(repr=False)
+    event_table: np.ndarray = field(repr=False)
+
+    # -- time series -----------------------------------------------------------------------
+    @property
+    def u(self) -> np.ndarray:
+        return self.state[:, 0]
+
+    @property
+    def u_dot(self) -> np.ndarray:
+        return self.state[:, 1]
+
+    @property
+    def theta(self) -> np.ndarray:
+        return self.state[:, 2]
+
+    @property
+    def theta_dot(self) -> np.ndarray:
+        return self.state[:, 3]
+
+    @property
+    def regime(self) -> np.ndarray:
+        return self.regime_codes.astype(int)
+
+    @property
+    def floor_acceleration(self) -> np.ndarray:
+        return self.motion.acceleration(self.t)
+
+    # -- outcome ---------------------------------------------------------------------------
+    @property
+    def status(self) -> str:
+        return _STATUS[int(self.raw_summary[C.S_STATUS])][0]
+
+    @property
+    def status_message(self) -> str:
+        return _STATUS[int(self.raw_summary[C.S_STATUS])][1]
+
+    @property
+    def alpha(self) -> float:
+        return self.system.statue.slenderness
+
+    @property
+    def overturned(self) -> bool:
+        return self.status == "overturned"
+
+    @property
+    def overturn_time(self) -> float | None:
+        return _opt(self.raw_summary[C.S_OVERTURN_TIME])
+
+    @property
+    def exceeded_alpha_time(self) -> float | None:
+        return _opt(self.raw_summary[C.S_EXCEED_TIME])
+
+    @property
+    def peak_rotation(self) -> float:
+        return float(self.raw_summary[C.S_PEAK_ROTATION])
+
+    @property
+    def events(self) -> list[Event]:
+        return [Event(float(r[0]), EventKind(int(r[1])), Regime(int(r[2])), Regime(int(r[3]))) for r in self.event_table]
+
+    @property
+    def impacts(self) -> list[Impact]:
+        rows = self.event_table[np.isin(self.event_table[:, 1], (C.EV_IMPACT, C.EV_SETTLE))]
+        return [Impact(*(float(v) for v in (r[0], r[4], r[5], r[6], r[7], r[8], r[9]))) for r in rows]
+
+    @property
+    def energy(self) -> dict[str, float]:
+        """Energy ledger at the end, J: input work of the floor's inertial forces, friction and
+        impact dissipation, and the largest balance error |E − E0 − W + D| over the run."""
+        s = self.raw_summary
+        return {
+            "input_work": float(s[C.S_W_INPUT]),
+            "friction_dissipation": float(s[C.S_D_FRICTION]),
+            "impact_dissipation": float(s[C.S_D_IMPACT]),
+            "balance_error": float(s[C.S_BALANCE]),
+            "relative_balance_error": float(s[C.S_BALANCE] / s[C.S_ENERGY_SCALE]),
+        }
+
+    @property
+    def warnings(self) -> list[str]:
+        """Instants where the model's assumptions fail (derivation §3.5), in words."""
+        s = self.raw_summary
+        out = []
+        checks = [
+            (C.S_N_NONPOSITIVE, "the floor normal force reached zero (the pedestal would jump)"),
+            (C.S_PY_NONPOSITIVE, "the statue's base force reached zero (the statue would lift off)"),
+            (C.S_TOP_SLIP, "the statue would slip on the pedestal (top-face friction exceeded)"),
+            (C.S_UPLIFT, "the pedestal would uplift (normal force outside its base)"),
+        ]
+        for index, text in checks:
+            if not math.isnan(s[index]):
+                out.append(f"from t = {s[index]:.4f} s {text}")
+        if s[C.S_IMPACT_FLOOR_SHORT] > 0:
+            out.append(
+                f"{int(s[C.S_IMPACT_FLOOR_SHORT])} impact(s) needed more floor friction than μs "
+                f"(up to {s[C.S_IMPACT_FLOOR_RATIO]:.3f}); the paper's impact law ignores this"
+            )
+        if s[C.S_INDETERMINATE] > 0:
+            out.append(f"{int(s[C.S_INDETERMINATE])} instant(s) where no regime was strictly consistent")
+        if self.status not in ("completed", "overturned"):
+            out.append(self.status_message)
+        return out
+
+    def summary(self) -> dict[str, Any]:
+        """The summary contract of ``rocking run`` (SI units, radians, null when it did not happen)."""
+        s = self.raw_summary
+        return {
+            "overturned": self.overturned,
+            "overturn_time": self.overturn_time,
+            "exceeded_alpha_time": self.exceeded_alpha_time,
+            "peak_rotation": float(s[C.S_PEAK_ROTATION]),
+            "peak_rotation_over_alpha": float(s[C.S_PEAK_ROTATION] / self.alpha),
+            "peak_sliding": float(s[C.S_PEAK_SLIDING]),
+            "residual_sliding": float(s[C.S_RESIDUAL_SLIDING]),
+            "impacts": int(s[C.S_IMPACTS]),
+            "first_rocking_time": _opt(s[C.S_FIRST_ROCK]),
+            "first_sliding_time": _opt(s[C.S_FIRST_SLIDE]),
+            "required_top_friction": float(s[C.S_TOP_RATIO]),
+            "impact_floor_friction_needed": float(s[C.S_IMPACT_FLOOR_RATIO]),
+            "energy_balance_error": float(s[C.S_BALANCE] / s[C.S_ENERGY_SCALE]),
+            "status": self.status,
+            "end_time": float(s[C.S_T_END]),
+            "warnings": self.warnings,
+        }
+
+    # -- key point kinematics (paper Eqs. 7–13) --------------------------------------------
+    def key_point(self, x: float, y: float) -> dict[str, np.ndarray]:
+        """Motion of a point P of the statue, given at rest by (x, y) in m from the centre of
+        its base (y up). Returns its horizontal and vertical displacement relative to the
+        floor (m) and its absolute horizontal acceleration (m/s², Eq. 13), at the saved times.
+
+        Eq. 12 is used with θ̇² in the centripetal term (the paper prints θ̇; P7).
+        """
+        from ..models.dynamics import accelerations
+
+        b = self.system.statue.b
+        p = self.parameters
+        th, thd, ud = self.theta, self.theta_dot, self.u_dot
+        a_g = self.floor_acceleration
+        a_v = self.motion.vertical_acceleration(self.t)
+        sig = np.where(np.isin(self.regime, (Regime.SLIDE, Regime.SLIDE_ROCK)), np.sign(ud), 0).astype(int)
+        rock = np.isin(self.regime, (Regime.ROCK, Regime.SLIDE_ROCK))
+        s = np.where(rock, np.where(th != 0, np.sign(th), np.sign(thd)), 0).astype(int)
+        udd = np.zeros_like(th)
+        thdd = np.zeros_like(th)
+        for i in range(th.size):
+            udd[i], thdd[i], _ = accelerations(p, int(sig[i]), int(s[i]), ud[i], th[i], thd[i], a_g[i], a_v[i])
+        rx = x - s * b  # P relative to the active pivot (S·b, 0)
+        c, sn = np.cos(th), np.sin(th)
+        dx = c * rx + sn * y - rx  # Eqs. 8–9: rotation (clockwise positive) about the pivot
+        dy = -sn * rx + c * y - y
+        acc_rel = (-sn * rx + c * y) * thdd - (c * rx + sn * y) * thd**2  # Eq. 12 (P7)
+        return {
+            "x": self.u + dx,
+            "y": dy,
+            "absolute_acceleration": a_g + udd + acc_rel,  # Eq. 13
+        }
+
+    # -- export ----------------------------------------------------------------------------
+    def to_xarray(self):
+        """The time series as an ``xarray.Dataset`` (units in attributes; summary in attrs)."""
+        import json
+
+        import xarray as xr
+
+        time = np.asarray(self.t)
+        ds = xr.Dataset(
+            {
+                "u": ("time", self.u, {"units": "m", "long_name": "sliding displacement relative to the floor"}),
+                "u_dot": ("time", self.u_dot, {"units": "m/s"}),
+                "theta": ("time", self.theta, {"units": "rad", "long_name": "statue rotation"}),
+                "theta_dot": ("time", self.theta_dot, {"units": "rad/s"}),
+                "regime": ("time", self.regime_codes.astype(np.int8), {"flag_values": "0 rest, 1 rock, 2 slide, 3 slide-rock"}),
+                "floor_acceleration": ("time", self.floor_acceleration, {"units": "m/s2"}),
+            },
+            coords={"time": ("time", time, {"units": "s"})},
+        )
+        ds.attrs["summary"] = json.dumps(self.summary())
+        ds.attrs["slenderness_rad"] = self.alpha
+        return ds

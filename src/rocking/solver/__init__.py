@@ -1,0 +1,1 @@
+"""Solvers of the hybrid (regime-switching) equations: compiled event-driven, scipy reference."""

@@ -1,0 +1,475 @@
+"""The compiled event-driven solver: smooth segments by Dormand–Prince 5(4), events located on
+the dense output, regime switches and impacts applied, and a restart.
+
+This is where physics (``models``, ``contact``) meets numerics (``integrators``). Steps never
+cross a breakpoint of the floor motion (a sample time of a record, the end of a pulse), so the
+Runge–Kutta step always sees a smooth right-hand side.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..contact.impact import friction_ratio, impact_coulomb, impact_paper
+from ..excitation.signal import evaluate
+from ..integrators import dopri5
+from ..models.dynamics import (
+    accelerations,
+    floor_forces,
+    kinetic_energy,
+    mechanical_energy,
+    pedestal_half_width,
+    power,
+    pressure_centre,
+    statue_contact,
+)
+from ..models.modes import EXCEED, FALL, IMPACT, N_GUARDS, STOP, evaluate_guards, select_regime
+from ..models.parameters import ALPHA, B, CAN_SLIDE, ETA, G, H, I_O, IMPACT_COULOMB, M, M2, MU_K, MU_S, MU_TOP, REST_VEL
+
+# Layout of the summary vector returned by `integrate` (NaN = did not happen).
+(S_STATUS, S_OVERTURN_TIME, S_EXCEED_TIME, S_PEAK_ROTATION, S_PEAK_SLIDING, S_RESIDUAL_SLIDING, S_IMPACTS,
+ S_FIRST_ROCK, S_FIRST_SLIDE, S_TOP_RATIO, S_BALANCE, S_STEPS, S_EVENTS, S_T_END, S_N_NONPOSITIVE,
+ S_PY_NONPOSITIVE, S_TOP_SLIP, S_UPLIFT, S_IMPACT_FLOOR_RATIO, S_IMPACT_FLOOR_SHORT, S_INDETERMINATE,
+ S_D_IMPACT, S_D_FRICTION, S_W_INPUT, S_ENERGY_SCALE, S_REJECTED, S_FINAL_THETA, S_FINAL_U_DOT) = range(28)
+N_SUMMARY = 28
+
+STATUS_COMPLETED, STATUS_OVERTURNED, STATUS_MAX_EVENTS, STATUS_SINGULAR, STATUS_STEP_FAILED = 0, 1, 2, 3, 4
+
+# Event kinds (see models.regimes.EventKind).
+EV_IMPACT, EV_SLIP, EV_STOP, EV_UPLIFT, EV_EXCEED, EV_FALL, EV_SETTLE, EV_BREAKPOINT = 1, 2, 3, 4, 5, 6, 7, 8
+N_EVENT_FIELDS = 10  # t, kind, regime before, regime after, u̇⁻, u̇⁺, θ̇⁻, θ̇⁺, energy lost, friction ratio
+
+N_STATE = 6  # u, u̇, θ, θ̇, input work W, friction dissipation D
+
+
+@njit(cache=True)
+def _ground(sig_h, sig_v, t, piece):
+    kh, ph, th, vh = sig_h
+    kv, pv, tv, vv = sig_v
+    return evaluate(kh, ph, th, vh, t, piece), evaluate(kv, pv, tv, vv, t, piece)
+
+
+@njit(cache=True)
+def rhs(t, y, args, out):
+    p, sig, s, sig_h, sig_v, piece = args
+    a, av = _ground(sig_h, sig_v, t, piece)
+    udd, thdd, _ = accelerations(p, sig, s, y[1], y[2], y[3], a, av)
+    p_in, p_fric = power(p, sig, s, y[1], y[2], y[3], a, av, udd, thdd)
+    out[0] = y[1]
+    out[1] = udd
+    out[2] = y[3]
+    out[3] = thdd
+    out[4] = p_in
+    out[5] = p_fric
+
+
+@njit(cache=True)
+def _step(t, y, h, K, work, y_new, args):
+    """One Dormand–Prince step; K[0] = rhs(t, y) on entry, K[6] = rhs(t + h, y_new) on exit."""
+    for stage in range(1, 6):
+        dopri5.stage_input(y, K, h, stage, work)
+        rhs(t + dopri5.C[stage] * h, work, args, K[stage])
+    dopri5.advance(y, K, h, y_new)
+    rhs(t + h, y_new, args, K[6])
+
+
+@njit(cache=True)
+def _regime(sig, s):
+    return (1 if s != 0 else 0) + (2 if sig != 0 else 0)
+
+
+@njit(cache=True)
+def _guard_at(p, sig, s, y0, K, h, x, sig_h, sig_v, t0, piece, exceeded, work, gbuf, index):
+    dopri5.dense(y0, K, h, x, work)
+    a, av = _ground(sig_h, sig_v, t0 + x * h, piece)
+    evaluate_guards(p, sig, s, work, a, av, exceeded, gbuf)
+    return gbuf[index]
+
+
+@njit(cache=True)
+def _locate(p, sig, s, y0, K, h, sig_h, sig_v, t0, piece, exceeded, work, gbuf, index, g_lo, g_hi):
+    """Fraction x ∈ (0, 1] of the step where guard ``index`` first reaches zero (Illinois)."""
+    lo, hi = 0.0, 1.0
+    flo, fhi = g_lo, g_hi
+    side = 0
+    for _ in range(200):
+        x = (lo * fhi - hi * flo) / (fhi - flo)
+        if not (lo < x < hi):
+            x = 0.5 * (lo + hi)
+        fx = _guard_at(p, sig, s, y0, K, h, x, sig_h, sig_v, t0, piece, exceeded, work, gbuf, index)
+        if fx <= 0.0:
+            hi, fhi = x, fx
+            if side == -1:
+                flo *= 0.5
+            side = -1
+        else:
+            lo, flo = x, fx
+            if side == 1:
+                fhi *= 0.5
+            side = 1
+        if (hi - lo) * h <= 1e-15 * max(1.0, abs(t0)) + 1e-300:
+            break
+    return hi
+
+
+@njit(cache=True)
+def _theta_dot_root(y0, K, h, work):
+    """Fraction of the step where θ̇ changes sign (bisection on the dense output)."""
+    dopri5.dense(y0, K, h, 0.0, work)
+    f_lo = work[3]
+    lo, hi = 0.0, 1.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        dopri5.dense(y0, K, h, mid, work)
+        if (work[3] > 0.0) == (f_lo > 0.0):
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+@njit(cache=True)
+def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_step, save_dt, save, max_events):
+    """Integrate the hybrid system from t0 to t_end.
+
+    Returns (summary, t_out, y_out, regime_out, events): the summary vector (layout above), the
+    saved samples (a uniform grid of step ``save_dt`` merged with the event instants; empty when
+    ``save`` is False) and the event table (one row per event, N_EVENT_FIELDS columns).
+    """
+    summ = np.full(N_SUMMARY, np.nan)
+    y = y_init.copy()
+    y_new = np.empty(N_STATE)
+    work = np.empty(N_STATE)
+    ye = np.empty(N_STATE)
+    K = np.empty((7, N_STATE))
+    Ke = np.empty((7, N_STATE))
+    g0 = np.empty(N_GUARDS)
+    g1 = np.empty(N_GUARDS)
+    gbuf = np.empty(N_GUARDS)
+    armed = np.ones(N_GUARDS, dtype=np.bool_)
+
+    n_grid = int(math.floor((t_end - t0) / save_dt + 1e-9)) + 1 if save else 0
+    cap = n_grid + 2 * max_events + 4 if save else 0
+    t_out = np.empty(cap)
+    y_out = np.empty((cap, 4))
+    r_out = np.empty(cap, dtype=np.int8)
+    n_out = 0
+    next_grid = 0
+    events = np.empty((max_events + 2, N_EVENT_FIELDS))
+    n_ev = 0
+
+    nb = breakpoints.shape[0]
+    ib = 0
+    t = t0
+    status = STATUS_COMPLETED
+    exceeded = False
+    impacts = 0
+    indeterminate = 0
+    d_impact = 0.0
+    steps = 0
+    rejected = 0
+    peak_theta = 0.0
+    peak_u = 0.0
+    top_ratio = 0.0
+    impact_floor_ratio = 0.0
+    energy_scale = 0.0
+    balance = 0.0
+    impact_short = 0
+
+    # Piece of the floor motion the first step sees, then the initial regime.
+    while ib < nb and breakpoints[ib] <= t:
+        ib += 1
+    t_stop = min(breakpoints[ib], t_end) if ib < nb else t_end
+    piece = t + 0.5 * (t_stop - t)
+    a, av = _ground(sig_h, sig_v, t, piece)
+    s_init = 0
+    if y[2] != 0.0:
+        s_init = 1 if y[2] > 0.0 else -1
+    elif y[3] != 0.0:
+        s_init = 1 if y[3] > 0.0 else -1
+    sig, s, ok = select_regime(p, y, s_init, a, av, False, False)
+    if not ok:
+        indeterminate += 1
+    e0 = mechanical_energy(p, s, y[1], y[2], y[3])
+    energy_scale = max(abs(e0), p[M] * p[G] * 1e-6 * (p[B] + p[H]))
+    if s != 0:
+        summ[S_FIRST_ROCK] = t
+    if sig != 0:
+        summ[S_FIRST_SLIDE] = t
+    h = min(max_step, 1e-3, t_end - t0)
+    fresh = True  # K[0] and the guards at t must be recomputed (start, event or breakpoint)
+
+    while t < t_end:
+        if fresh:
+            while ib < nb and breakpoints[ib] <= t:
+                ib += 1
+            t_stop = min(breakpoints[ib], t_end) if ib < nb else t_end
+            piece = t + 0.5 * (t_stop - t)
+        args = (p, sig, s, sig_h, sig_v, piece)
+        if fresh:
+            rhs(t, y, args, K[0])
+            a, av = _ground(sig_h, sig_v, t, piece)
+            evaluate_guards(p, sig, s, y, a, av, exceeded, g0)
+            for i in range(N_GUARDS):
+                armed[i] = g0[i] > 0.0
+            fresh = False
+        h = min(h, max_step, t_stop - t)
+        # Avoid a sliver of a step before a breakpoint.
+        if t_stop - (t + h) < 1e-3 * h:
+            h = t_stop - t
+        _step(t, y, h, K, work, y_new, args)
+        err = dopri5.error_norm(y, y_new, K, h, rtol, atol, 4)
+        if not (err <= 1.0):
+            rejected += 1
+            if not math.isfinite(err):
+                h *= 0.1
+            else:
+                h *= max(0.2, 0.9 * err ** (-0.2))
+            if h < 1e-14 * max(1.0, abs(t)):
+                status = STATUS_STEP_FAILED
+                break
+            continue
+        steps += 1
+        t1 = t + h
+        if abs(t1 - t_stop) <= 4e-16 * max(1.0, abs(t_stop)) * 4:
+            t1 = t_stop
+
+        # Guards at the end of the step (same piece of the motion as the step).
+        a1, av1 = _ground(sig_h, sig_v, t1, piece)
+        evaluate_guards(p, sig, s, y_new, a1, av1, exceeded, g1)
+        first = -1
+        x_first = 2.0
+        for i in range(N_GUARDS):
+            if armed[i] and g0[i] > 0.0 and g1[i] <= 0.0:
+                x = _locate(p, sig, s, y, K, h, sig_h, sig_v, t, piece, exceeded, work, gbuf, i, g0[i], g1[i])
+                if x < x_first:
+                    x_first, first = x, i
+        x_end = x_first if first >= 0 else 1.0
+
+        # Peak rotation inside the step (θ̇ changes sign).
+        if s != 0:
+            dopri5.dense(y, K, h, x_end, work)
+            if (y[3] > 0.0) != (work[3] > 0.0):
+                xr = _theta_dot_root(y, K, h, work)
+                if xr <= x_end:
+                    dopri5.dense(y, K, h, xr, work)
+                    peak_theta = max(peak_theta, abs(work[2]))
+
+        # Samples on the output grid up to the end of the (possibly shortened) step.
+        if save:
+            while next_grid < n_grid:
+                tg = t0 + next_grid * save_dt
+                if tg > t + x_end * h + 1e-12 * h:
+                    break
+                if tg >= t:
+                    dopri5.dense(y, K, h, (tg - t) / h, work)
+                    t_out[n_out] = tg
+                    y_out[n_out, :] = work[:4]
+                    r_out[n_out] = _regime(sig, s)
+                    n_out += 1
+                next_grid += 1
+
+        if first < 0:
+            for j in range(N_STATE):
+                y[j] = y_new[j]
+            t = t1
+            for i in range(N_GUARDS):
+                g0[i] = g1[i]
+                if g1[i] > 0.0:
+                    armed[i] = True
+            for j in range(N_STATE):
+                K[0, j] = K[6, j]
+            h = h * min(5.0, max(0.2, 0.9 * err ** (-0.2))) if err > 0 else 5.0 * h
+            if t >= t_stop and t < t_end:
+                # Jump of the floor motion: the regime may change here.
+                ib += 1
+                t_stop_next = min(breakpoints[ib], t_end) if ib < nb else t_end
+                piece_next = t + 0.5 * (t_stop_next - t)
+                a, av = _ground(sig_h, sig_v, t, piece_next)
+                sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
+                if not ok:
+                    indeterminate += 1
+                if sig2 != sig or s2 != s:
+                    if n_ev < max_events:
+                        events[n_ev, 0] = t
+                        events[n_ev, 1] = EV_BREAKPOINT
+                        events[n_ev, 2] = _regime(sig, s)
+                        events[n_ev, 3] = _regime(sig2, s2)
+                        events[n_ev, 4:8] = np.array([y[1], y[1], y[3], y[3]])
+                        events[n_ev, 8:] = 0.0
+                        n_ev += 1
+                    if s2 != 0 and math.isnan(summ[S_FIRST_ROCK]):
+                        summ[S_FIRST_ROCK] = t
+                    if sig2 != 0 and math.isnan(summ[S_FIRST_SLIDE]):
+                        summ[S_FIRST_SLIDE] = t
+                sig, s = sig2, s2
+                fresh = True
+        else:
+            # Event: state at the event by a direct (5th-order) step, not the interpolant.
+            te = t + x_first * h
+            Ke[0, :] = K[0, :]
+            _step(t, y, te - t, Ke, work, ye, args)
+            for j in range(N_STATE):
+                y[j] = ye[j]
+            t = te
+            fresh = True
+            regime_before = _regime(sig, s)
+            ud_before, thd_before = y[1], y[3]
+            lost = 0.0
+            ratio = 0.0
+            kind = 0
+            if save and n_out < cap:
+                t_out[n_out] = t
+                y_out[n_out, :] = y[:4]
+                r_out[n_out] = regime_before
+                n_out += 1
+            a, av = _ground(sig_h, sig_v, t, piece)
+            if first == FALL:
+                kind = EV_FALL
+                summ[S_OVERTURN_TIME] = t
+                status = STATUS_OVERTURNED
+            elif first == EXCEED:
+                kind = EV_EXCEED
+                exceeded = True
+                summ[S_EXCEED_TIME] = t
+            elif first == IMPACT:
+                kind = EV_IMPACT
+                impacts += 1
+                y[2] = 0.0
+                t_before = kinetic_energy(p, s, y[1], 0.0, y[3])
+                if p[IMPACT_COULOMB] > 0.5:
+                    ud1, thd1, fx, fy, ok = impact_coulomb(
+                        p[I_O], p[M], p[M2], p[B], p[H], p[ETA], p[MU_S], p[MU_K], p[CAN_SLIDE], y[1], y[3]
+                    )
+                    if not ok:
+                        indeterminate += 1
+                else:
+                    ud1, thd1, fx, fy = impact_paper(p[M], p[M2], p[B], p[H], p[ETA], y[1], y[3])
+                ratio = friction_ratio(fx, fy)
+                # The floor must supply this ratio; the paper's law does not check it (P15, O19).
+                impact_floor_ratio = max(impact_floor_ratio, ratio)
+                if p[CAN_SLIDE] > 0.5 and y[1] == 0.0 and ud1 == 0.0 and ratio > p[MU_S]:
+                    impact_short += 1
+                # Impulse on the statue's base: it must not slip on the pedestal either.
+                lx = p[M2] * ((ud1 - y[1]) + p[H] * (thd1 - y[3]))
+                ly = p[M2] * p[B] * (abs(thd1) + abs(y[3]))
+                top_ratio = max(top_ratio, friction_ratio(lx, ly))
+                s = -s
+                y[1] = ud1
+                y[3] = thd1
+                if abs(thd1) < p[REST_VEL]:
+                    kind = EV_SETTLE
+                    y[3] = 0.0
+                    s = 0
+                t_after = kinetic_energy(p, s, y[1], 0.0, y[3])
+                lost = t_before - t_after
+                d_impact += lost
+                sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
+            elif first == STOP:
+                kind = EV_STOP
+                y[1] = 0.0
+                sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
+            elif first <= 1:
+                kind = EV_SLIP
+                sig2, s2, ok = select_regime(p, y, s, a, av, True, False)
+            else:
+                kind = EV_UPLIFT
+                sig2, s2, ok = select_regime(p, y, s, a, av, False, True)
+            if first == IMPACT or first == STOP or first <= 4:
+                if not ok:
+                    indeterminate += 1
+                if s2 != 0 and math.isnan(summ[S_FIRST_ROCK]):
+                    summ[S_FIRST_ROCK] = t
+                if sig2 != 0 and math.isnan(summ[S_FIRST_SLIDE]):
+                    summ[S_FIRST_SLIDE] = t
+                sig, s = sig2, s2
+            if n_ev < max_events + 2:
+                events[n_ev, 0] = t
+                events[n_ev, 1] = kind
+                events[n_ev, 2] = regime_before
+                events[n_ev, 3] = _regime(sig, s)
+                events[n_ev, 4] = ud_before
+                events[n_ev, 5] = y[1]
+                events[n_ev, 6] = thd_before
+                events[n_ev, 7] = y[3]
+                events[n_ev, 8] = lost
+                events[n_ev, 9] = ratio
+                n_ev += 1
+            if save and n_out < cap and kind != EV_EXCEED:
+                t_out[n_out] = t
+                y_out[n_out, :] = y[:4]
+                r_out[n_out] = _regime(sig, s)
+                n_out += 1
+            if status == STATUS_OVERTURNED:
+                break
+            if n_ev >= max_events:
+                status = STATUS_MAX_EVENTS
+                break
+
+        # Checks at the new point: extremes, energy balance, the model's assumptions.
+        peak_theta = max(peak_theta, abs(y[2]))
+        peak_u = max(peak_u, abs(y[0]))
+        a, av = _ground(sig_h, sig_v, t, piece)
+        udd, thdd, ok = accelerations(p, sig, s, y[1], y[2], y[3], a, av)
+        if not ok:
+            status = STATUS_SINGULAR
+            break
+        e = mechanical_energy(p, s, y[1], y[2], y[3])
+        energy_scale = max(energy_scale, abs(e), abs(y[4]), abs(y[5]))
+        balance = max(balance, abs(e - e0 - y[4] + y[5] + d_impact))
+        px, py = statue_contact(p, s, y[2], y[3], a, av, udd, thdd)
+        if py > 0.0:
+            top_ratio = max(top_ratio, abs(px) / py)
+        if s != 0:
+            _, n_full = floor_forces(p, s, y[2], y[3], a, av, udd, thdd)
+            if n_full <= 0.0:
+                if math.isnan(summ[S_N_NONPOSITIVE]):
+                    summ[S_N_NONPOSITIVE] = t
+            if py <= 0.0:
+                if math.isnan(summ[S_PY_NONPOSITIVE]):
+                    summ[S_PY_NONPOSITIVE] = t
+            if p[MU_TOP] >= 0.0 and abs(px) > p[MU_TOP] * py:
+                if math.isnan(summ[S_TOP_SLIP]):
+                    summ[S_TOP_SLIP] = t
+            b1 = pedestal_half_width(p)
+            if b1 > 0.0:
+                xn = pressure_centre(p, s, a, udd, px, py, n_full)
+                if math.isfinite(xn) and abs(xn) > b1 and math.isnan(summ[S_UPLIFT]):
+                    summ[S_UPLIFT] = t
+
+    if save and status != STATUS_OVERTURNED:
+        # Last grid point(s) reached exactly at t_end.
+        while next_grid < n_grid and n_out < cap:
+            tg = t0 + next_grid * save_dt
+            if tg > t + 1e-9:
+                break
+            t_out[n_out] = t
+            y_out[n_out, :] = y[:4]
+            r_out[n_out] = _regime(sig, s)
+            n_out += 1
+            next_grid += 1
+
+    summ[S_STATUS] = status
+    summ[S_PEAK_ROTATION] = peak_theta
+    summ[S_PEAK_SLIDING] = peak_u
+    summ[S_RESIDUAL_SLIDING] = y[0]
+    summ[S_IMPACTS] = impacts
+    summ[S_TOP_RATIO] = top_ratio
+    summ[S_BALANCE] = balance
+    summ[S_STEPS] = steps
+    summ[S_EVENTS] = n_ev
+    summ[S_T_END] = t
+    summ[S_IMPACT_FLOOR_RATIO] = impact_floor_ratio
+    summ[S_IMPACT_FLOOR_SHORT] = impact_short
+    summ[S_INDETERMINATE] = indeterminate
+    summ[S_D_IMPACT] = d_impact
+    summ[S_D_FRICTION] = y[5]
+    summ[S_W_INPUT] = y[4]
+    summ[S_ENERGY_SCALE] = energy_scale
+    summ[S_REJECTED] = rejected
+    summ[S_FINAL_THETA] = y[2]
+    summ[S_FINAL_U_DOT] = y[1]
+    return summ, t_out[:n_out], y_out[:n_out], r_out[:n_out], events[:n_ev]
