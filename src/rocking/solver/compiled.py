@@ -90,16 +90,18 @@ def _guard_at(p, sig, s, y0, K, h, x, sig_h, sig_v, t0, piece, exceeded, work, g
 
 
 @njit(cache=True)
-def _locate(p, sig, s, y0, K, h, sig_h, sig_v, t0, piece, exceeded, work, gbuf, index, g_lo, g_hi):
-    """Fraction x ∈ (0, 1] of the step where guard ``index`` first reaches zero (Illinois)."""
+def _locate(p, sig, s, y0, K, h, sig_h, sig_v, t0, piece, exceeded, work, gbuf, index, g_lo, g_hi, x0=0.0):
+    """Where guard ``index`` first reaches zero in [x0, 1] of the step, as a fraction of
+    [x0, 1] (Illinois method on the dense output; g(x0) = g_lo > 0 ≥ g_hi = g(1))."""
     lo, hi = 0.0, 1.0
     flo, fhi = g_lo, g_hi
     side = 0
+    width = (1.0 - x0) * h
     for _ in range(200):
         x = (lo * fhi - hi * flo) / (fhi - flo)
         if not (lo < x < hi):
             x = 0.5 * (lo + hi)
-        fx = _guard_at(p, sig, s, y0, K, h, x, sig_h, sig_v, t0, piece, exceeded, work, gbuf, index)
+        fx = _guard_at(p, sig, s, y0, K, h, x0 + (1.0 - x0) * x, sig_h, sig_v, t0, piece, exceeded, work, gbuf, index)
         if fx <= 0.0:
             hi, fhi = x, fx
             if side == -1:
@@ -110,9 +112,27 @@ def _locate(p, sig, s, y0, K, h, sig_h, sig_v, t0, piece, exceeded, work, gbuf, 
             if side == 1:
                 fhi *= 0.5
             side = 1
-        if (hi - lo) * h <= 1e-15 * max(1.0, abs(t0)) + 1e-300:
+        if (hi - lo) * width <= 1e-15 * max(1.0, abs(t0)) + 1e-300:
             break
     return hi
+
+
+@njit(cache=True)
+def _positive_inside(p, sig, s, y0, K, h, sig_h, sig_v, t0, piece, exceeded, work, gbuf, index):
+    """A fraction x of the step where guard ``index`` is positive, or −1. For the impact guard
+    the best candidate is the turning point of θ (θ̇ = 0); otherwise 32 samples are tried."""
+    if index == IMPACT:
+        dopri5.dense(y0, K, h, 1.0, work)
+        if (y0[3] > 0.0) != (work[3] > 0.0):
+            x = _theta_dot_root(y0, K, h, work)
+            if _guard_at(p, sig, s, y0, K, h, x, sig_h, sig_v, t0, piece, exceeded, work, gbuf, index) > 0.0:
+                return x
+    x_best = -1.0
+    for k in range(1, 32):
+        x = k / 32.0
+        if _guard_at(p, sig, s, y0, K, h, x, sig_h, sig_v, t0, piece, exceeded, work, gbuf, index) > 0.0:
+            x_best = x
+    return x_best
 
 
 @njit(cache=True)
@@ -243,10 +263,22 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
         first = -1
         x_first = 2.0
         for i in range(N_GUARDS):
-            if armed[i] and g0[i] > 0.0 and g1[i] <= 0.0:
+            if g1[i] > 0.0:
+                continue
+            if armed[i] and g0[i] > 0.0:
                 x = _locate(p, sig, s, y, K, h, sig_h, sig_v, t, piece, exceeded, work, gbuf, i, g0[i], g1[i])
-                if x < x_first:
-                    x_first, first = x, i
+            else:
+                # A guard that started on zero (just after an event) may have gone positive and
+                # back within this step: find an interior point where it is positive.
+                x_lo = _positive_inside(p, sig, s, y, K, h, sig_h, sig_v, t, piece, exceeded, work, gbuf, i)
+                if x_lo < 0.0:
+                    continue
+                g_lo = _guard_at(p, sig, s, y, K, h, x_lo, sig_h, sig_v, t, piece, exceeded, work, gbuf, i)
+                x = x_lo + (1.0 - x_lo) * _locate(
+                    p, sig, s, y, K, h, sig_h, sig_v, t, piece, exceeded, work, gbuf, i, g_lo, g1[i], x_lo
+                )
+            if x < x_first:
+                x_first, first = x, i
         x_end = x_first if first >= 0 else 1.0
 
         # Peak rotation inside the step (θ̇ changes sign).
