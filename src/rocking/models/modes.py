@@ -89,14 +89,20 @@ def select_regime(p, y, s_now, a, av, forbid_stick, forbid_rest):
         n_sig = 1
     elif p[CAN_SLIDE] < 0.5:
         n_sig = 1
+    elif forbid_stick:
+        # The friction cone was just left: the slip direction is the preferred one, even if
+        # the tie at this instant makes σ·ü vanish to rounding.
+        sig_list[0] = sig_pref
+        n_sig = 1
     else:
-        if not forbid_stick:
-            n_sig = 1
-        sig_list[n_sig] = sig_pref
-        sig_list[n_sig + 1] = -sig_pref
-        n_sig += 2
+        sig_list[1] = sig_pref
+        sig_list[2] = -sig_pref
+        n_sig = 3
 
     first_sig, first_s = sig_list[0], s_guess
+    if forbid_rest and not rocking:
+        udd_r, _, _ = accelerations(p, first_sig, 0, u_dot, theta, theta_dot, a, av)
+        first_s = -_sign(a + udd_r)
     for i in range(n_sig):
         sig = sig_list[i]
         # Statue candidates, preferred rocking direction opposite to the base acceleration.
@@ -108,11 +114,13 @@ def select_regime(p, y, s_now, a, av, forbid_stick, forbid_rest):
         else:
             udd_r, _, _ = accelerations(p, sig, 0, u_dot, theta, theta_dot, a, av)
             s_pref = -_sign(a + udd_r)
-            if not forbid_rest:
+            if forbid_rest:
+                s_list[0] = s_pref
                 n_s = 1
-            s_list[n_s] = s_pref
-            s_list[n_s + 1] = -s_pref
-            n_s += 2
+            else:
+                s_list[1] = s_pref
+                s_list[2] = -s_pref
+                n_s = 3
         for j in range(n_s):
             s = s_list[j]
             udd, thdd, ok = accelerations(p, sig, s, u_dot, theta, theta_dot, a, av)
@@ -123,14 +131,14 @@ def select_regime(p, y, s_now, a, av, forbid_stick, forbid_rest):
                     f, n = floor_forces(p, s, theta, theta_dot, a, av, udd, thdd)
                     if abs(f) > p[MU_S] * friction_normal(p, n, av):
                         continue
-            elif not moving:
-                if sig * udd < 0.0 or (sig * udd == 0.0 and not forbid_stick):
+            elif not moving and not forbid_stick:
+                if sig * udd <= 0.0:
                     continue
             if s == 0:
                 if abs(a + udd) > threshold:
                     continue
-            elif not rocking:
-                if s * thdd < 0.0 or (s * thdd == 0.0 and not forbid_rest):
+            elif not rocking and not forbid_rest:
+                if s * thdd <= 0.0:
                     continue
             return sig, s, True
     return first_sig, first_s, False

@@ -26,7 +26,17 @@ from ..models.dynamics import (
     pressure_centre,
     statue_contact,
 )
-from ..models.modes import EXCEED, FALL, IMPACT, N_GUARDS, STOP, evaluate_guards, select_regime
+from ..models.modes import (
+    EXCEED,
+    FALL,
+    IMPACT,
+    N_GUARDS,
+    ROCK_TO_NEGATIVE,
+    ROCK_TO_POSITIVE,
+    STOP,
+    evaluate_guards,
+    select_regime,
+)
 from ..models.parameters import ALPHA, B, CAN_SLIDE, ETA, G, H, I_O, IMPACT_COULOMB, M, M2, MU_K, MU_S, MU_TOP, REST_VEL
 
 # Layout of the summary vector returned by `integrate` (NaN = did not happen).
@@ -272,6 +282,12 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                 # back within this step: find an interior point where it is positive.
                 x_lo = _positive_inside(p, sig, s, y, K, h, sig_h, sig_v, t, piece, exceeded, work, gbuf, i)
                 if x_lo < 0.0:
+                    # A friction or rocking threshold exactly tied when the regime was chosen
+                    # (e.g. a pulse whose phase starts rocking at t = 0) and crossed right away:
+                    # the regime ends at the start of the step.
+                    if i <= 1 or i == ROCK_TO_NEGATIVE or i == ROCK_TO_POSITIVE:
+                        if g1[i] < 0.0:
+                            x_first, first = 0.0, i
                     continue
                 g_lo = _guard_at(p, sig, s, y, K, h, x_lo, sig_h, sig_v, t, piece, exceeded, work, gbuf, i)
                 x = x_lo + (1.0 - x_lo) * _locate(
@@ -436,6 +452,8 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                 r_out[n_out] = _regime(sig, s)
                 n_out += 1
             if status == STATUS_OVERTURNED:
+                peak_theta = max(peak_theta, abs(y[2]))
+                peak_u = max(peak_u, abs(y[0]))
                 break
             if n_ev >= max_events:
                 status = STATUS_MAX_EVENTS

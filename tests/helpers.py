@@ -1,0 +1,34 @@
+"""Small builders shared by the solver tests (g = 9.81 m/s², as in the oracles)."""
+
+import math
+
+import rocking as rk
+
+G = 9.81
+OPTS = rk.Options(gravity=G)
+NO_MOTION = rk.Harmonic(amplitude=0.0, frequency=1.0, cycles=1.0)
+
+
+def block(b, h, *, mass=1.0, restitution=None, friction=None):
+    """A statue of half-width b and half-height h (m)."""
+    return rk.Statue(width=2 * b, height=2 * h, mass=mass, restitution=restitution, friction=friction)
+
+
+def alone(statue):
+    return rk.System(statue=statue)
+
+
+def slender(alpha, h=1.0, **kw):
+    """A block of slenderness α (rad) and half-height h."""
+    return block(h * math.tan(alpha), h, **kw)
+
+
+def p_of(statue):
+    return statue.frequency_parameter(G)
+
+
+def first_event(response, kind):
+    for e in response.events:
+        if e.kind == kind:
+            return e
+    return None
