@@ -25,8 +25,19 @@ energy(params, state, *, s=None) -> float
 impact_coulomb(params, state, *, r=None, s_before=None) -> ImpactResult
 impact_paper(params, state, *, r=None, s_before=None) -> ImpactResult
 
+statue_velocity_rel(params, state, *, s=None) -> (vx, vy)
+consistent_regimes(params, a_g, a_v=0.0) -> [(regime, s, sigma), ...]   (at u_dot = theta = theta_dot = 0)
+select_regime(params, a_g, a_v=0.0) -> (regime, s, sigma)              (preference rule)
+pedestal_center_of_pressure(params, H1, s, Px, Py, N, a_abs) -> x_N
+symbolic(regime, s, normal_force) / symbolic_equations(s): the sympy expressions themselves.
+
 params: dict with b, h, m1, m2 and optionally g (default 9.81), mu_s, mu_k,
 normal_force ("full" default | "paper").  state: (u, u_dot, theta, theta_dot).
+"paper" means N = M (g + a_v) (the seed's Eq. 18 normal force, without the stray a_g factor),
+i.e. N = M g without vertical floor motion; "full" is the N of the vertical momentum balance.
+
+The symbolic work (about 1 s) is done lazily on first use and cached in the module-level
+dict _CACHE, one lambdified function per (regime, pivot, normal-force model).
 """
 
 from __future__ import annotations
@@ -456,3 +467,92 @@ def impact_paper(params: dict, state, *, r: float | None = None, s_before: int |
     V, th_p, Fx, Fy, Lx, Ly = (float(x) for x in paper(*geo, rr, 0.0, 0, ud, thd))
     s_a = -s_b
     return ImpactResult(V, th_p, Fx, Fy, Lx, Ly, "paper", s_a, _consistent(th_p, Fy, Ly, s_a))
+
+
+# ---------------------------------------------------------------------------------------------
+# Mode selection at a state where several regimes are candidates (derivation.md section 3.5)
+# ---------------------------------------------------------------------------------------------
+#: preference order: fewest moving degrees of freedom, stick before slide, rest before rock
+REGIME_PREFERENCE = ("stick-rest", "stick-rock", "slide-rest", "slide-rock")
+
+
+def consistent_regimes(params: dict, a_g: float, a_v: float = 0.0, state=(0.0, 0.0, 0.0, 0.0)):
+    """All regimes consistent at a state with u_dot = 0 and theta = theta_dot = 0 (e.g. t = 0+),
+    as a list of (regime, s, sigma) in preference order (s, sigma = 0 where irrelevant).
+
+    Consistency tests:
+      stick: |F| <= mu_s N;            slip: sigma u_ddot > 0;
+      rest:  |a_g + u_ddot| <= (g + a_v) tan(alpha);   rock: s theta_ddot > 0.
+    Also N > 0 is required.  params needs mu_s and mu_k.
+    """
+    u, ud, th, thd = (float(x) for x in state)
+    if ud != 0.0 or th != 0.0 or thd != 0.0:
+        raise ValueError("consistent_regimes expects u_dot = theta = theta_dot = 0")
+    bb, hh = float(params["b"]), float(params["h"])
+    gg = float(params.get("g", G_DEFAULT))
+    mus = float(params["mu_s"])
+    tan_a = bb / hh
+    out = []
+    for regime in REGIME_PREFERENCE:
+        for s in ((0,) if regime.endswith("rest") else (1, -1)):
+            for sg in ((0,) if regime.startswith("stick") else (1, -1)):
+                kw = {}
+                if s:
+                    kw["s"] = s
+                if sg:
+                    kw["sigma"] = sg
+                try:
+                    udd, thdd, N, Fv, _px, _py = accelerations(regime, params, state, a_g, a_v, **kw)
+                except ValueError:
+                    continue
+                ok = N > 0.0
+                if regime.startswith("stick"):
+                    ok &= abs(Fv) <= mus * N
+                else:
+                    ok &= sg * udd > 0.0
+                if regime.endswith("rest"):
+                    ok &= abs(a_g + udd) <= (gg + a_v) * tan_a
+                else:
+                    ok &= s * thdd > 0.0
+                if ok:
+                    out.append((regime, s, sg))
+    return out
+
+
+def select_regime(params: dict, a_g: float, a_v: float = 0.0):
+    """First consistent regime in REGIME_PREFERENCE order at u_dot = theta = theta_dot = 0:
+    (regime, s, sigma).  Raises ValueError if none is consistent."""
+    c = consistent_regimes(params, a_g, a_v)
+    if not c:
+        raise ValueError("no consistent regime")
+    return c[0]
+
+
+# ---------------------------------------------------------------------------------------------
+# Centre of pressure under the pedestal (pedestal-uplift check), derived by a moment balance
+# ---------------------------------------------------------------------------------------------
+def _x_n_expression():
+    """x_N from the moment balance of the (non-rotating) pedestal about the floor point below its
+    centre of mass: x_N N + (moment of the statue's reaction -P at (s b, H1)) = moment of
+    m1 a_G1 with r_G1 = (0, H1/2).  Returns x_N(s, Px, Py, N, a_abs) with a_abs = a_g + u_ddot."""
+    key = ("xN",)
+    if key not in _CACHE:
+        s_, Px_, Py_, N_, a_, xN = sp.symbols("s P_x P_y N a_abs x_N", real=True)
+        r_P = (s_ * b, H1)
+        mom_P = r_P[0] * (-Py_) - r_P[1] * (-Px_)
+        r_G = (0, H1 / 2)
+        mom_inertia = r_G[0] * (m1 * av_s) - r_G[1] * (m1 * a_)
+        sol = sp.solve(sp.Eq(xN * N_ + mom_P, mom_inertia), xN)[0]
+        _CACHE[key] = (sp.lambdify((s_, b, H1, m1, Px_, Py_, N_, a_, av_s), sol, modules="math"), sol)
+    return _CACHE[key]
+
+
+def pedestal_center_of_pressure(params: dict, H1: float, s: int, Px: float, Py: float, N: float,
+                                a_abs: float) -> float:
+    """Horizontal position (m) of the floor's resultant normal force relative to the pedestal's
+    centre line, for a pedestal of height H1 with its centre of mass at H1/2; a_abs is the
+    pedestal's absolute horizontal acceleration a_g + u_ddot.  The pedestal uplifts if |x_N|
+    exceeds its half-width.  Agrees with derivation.md 3.5:
+    x_N = [s b Py - H1 Px - (H1/2) m1 a_abs] / N."""
+    fn, _ = _x_n_expression()
+    return float(fn(s, float(params["b"]), H1, float(params["m1"]), Px, Py, N, a_abs, 0.0))

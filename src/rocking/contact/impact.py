@@ -53,7 +53,9 @@ def impact_coulomb(i_o, m_tot, m2, b, h, r, mu_s, mu_k, can_slide, u_dot, theta_
     w_stick = lhs / i_o
     fx, fy = _impulses(m_tot, m2, b, h, u_dot, theta_dot, 0.0, w_stick)
     if can_slide < 0.5 or abs(fx) <= mu_s * fy:
-        return 0.0, w_stick, fx, fy, True
+        # A reversed θ̇ (a squat heavy statue, or a pedestal moving against it) breaks the
+        # assumption that the statue rolls over onto the new corner: report it as inconsistent.
+        return 0.0, w_stick, fx, fy, w_stick * theta_dot >= 0.0
     # Trial 2: it slides with σ = ±1 during the impulse; θ̇⁺ keeps the sign of θ̇⁻ (ζ).
     zeta = 1.0 if theta_dot > 0 else -1.0
     for sigma in (-1.0 if fx > 0 else 1.0, 1.0 if fx > 0 else -1.0):

@@ -225,10 +225,6 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
         indeterminate += 1
     e0 = mechanical_energy(p, s, y[1], y[2], y[3])
     energy_scale = max(abs(e0), p[M] * p[G] * 1e-6 * (p[B] + p[H]))
-    if s != 0:
-        summ[S_FIRST_ROCK] = t
-    if sig != 0:
-        summ[S_FIRST_SLIDE] = t
     h = min(max_step, 1e-3, t_end - t0)
     fresh = True  # K[0] and the guards at t must be recomputed (start, event or breakpoint)
 
@@ -296,6 +292,12 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
             if x < x_first:
                 x_first, first = x, i
         x_end = x_first if first >= 0 else 1.0
+        # A regime counts as entered once it lasts: a tie resolved at the same instant does not.
+        if x_end > 0.0:
+            if s != 0 and math.isnan(summ[S_FIRST_ROCK]):
+                summ[S_FIRST_ROCK] = t
+            if sig != 0 and math.isnan(summ[S_FIRST_SLIDE]):
+                summ[S_FIRST_SLIDE] = t
 
         # Peak rotation inside the step (θ̇ changes sign).
         if s != 0:
@@ -349,10 +351,6 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                         events[n_ev, 4:8] = np.array([y[1], y[1], y[3], y[3]])
                         events[n_ev, 8:] = 0.0
                         n_ev += 1
-                    if s2 != 0 and math.isnan(summ[S_FIRST_ROCK]):
-                        summ[S_FIRST_ROCK] = t
-                    if sig2 != 0 and math.isnan(summ[S_FIRST_SLIDE]):
-                        summ[S_FIRST_SLIDE] = t
                 sig, s = sig2, s2
                 fresh = True
         else:
@@ -429,10 +427,6 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
             if first == IMPACT or first == STOP or first <= 4:
                 if not ok:
                     indeterminate += 1
-                if s2 != 0 and math.isnan(summ[S_FIRST_ROCK]):
-                    summ[S_FIRST_ROCK] = t
-                if sig2 != 0 and math.isnan(summ[S_FIRST_SLIDE]):
-                    summ[S_FIRST_SLIDE] = t
                 sig, s = sig2, s2
             if n_ev < max_events + 2:
                 events[n_ev, 0] = t

@@ -1,0 +1,569 @@
+"""A second, independent integrator of the same hybrid equations, built on SciPy.
+
+``simulate_reference`` integrates exactly the model of :mod:`rocking.solver.compiled` — the same
+equations of motion (``models.dynamics.accelerations``), the same guards
+(``models.modes.evaluate_guards``), the same regime selection (``models.modes.select_regime``)
+and the same impact laws (``contact.impact``) — but with different numerics:
+
+* smooth segments by :func:`scipy.integrate.solve_ivp` with the 8th-order Dormand–Prince method
+  (``DOP853``), instead of the compiled Dormand–Prince 5(4);
+* events located by SciPy: every active guard is a separate event function (terminal,
+  direction −1) and SciPy brackets its sign change over a step and solves it with Brent's
+  method on the 7th-order dense output; the compiled solver uses the Illinois method on the
+  4th-order interpolant and then a direct step to the event;
+* the floor acceleration is evaluated by a plain-Python version of each signal kind (the
+  compiled ``excitation.signal.evaluate`` is only a fallback for kinds not listed here).
+
+It is slow (a Python call per right-hand-side evaluation, one ``solve_ivp`` call per segment)
+and meant for cross-checking the compiled core in tests and benchmarks, not for production runs.
+
+Segments
+--------
+An integration segment never crosses a breakpoint of the floor motion (a sample time of a
+record, the end of a pulse or of a harmonic): ``solve_ivp`` is called on ``[t, t_stop]`` with
+``t_stop`` the next breakpoint (or the end of the run), so DOP853 only ever sees a smooth
+right-hand side. Which side of a jump applies is decided, as in the compiled solver, by a
+"piece" time strictly inside the segment. At a breakpoint the regime is selected again
+(``select_regime``) and a BREAKPOINT event is recorded if it changes. A terminal event ends the
+``solve_ivp`` call early; the transition is applied and a new call starts at the event time.
+
+Guards that start on zero
+-------------------------
+Right after a switch, the guard that ends the new regime is often exactly zero at the start of
+the segment (θ = 0 just after an impact or an uplift, u̇ = 0 just after a slip starts). SciPy
+decides that an event happened in a step from the signs of g at the two ends of the step, and
+``g(t_old) = 0, g(t_new) ≤ 0`` counts as a crossing whose root Brent's method puts at ``t_old``:
+the same event would fire again at the segment start, forever. And a guard that starts on zero,
+goes positive and comes back to zero within the first step would be missed by a test that just
+ignores roots at the start.
+
+What is done here: ``select_regime`` only returns a regime whose guards are non-negative and
+*leave zero upwards* (it checks the sign of the first non-vanishing derivative: σ·ü > 0 for a
+slip that starts, S·θ̈ > 0 for a rocking that starts, S·θ̇ > 0 after an impact). So for each guard
+that is ≤ 0 at the segment start, its value *at exactly the start time* is replaced by its
+right-hand limit's sign, a tiny positive number. Then a guard that rises and falls back within
+the first step is bracketed and located properly (g > 0 at the start, ≤ 0 at the step end), and
+one that stays positive never fires. If such a guard nevertheless "fires" at the start itself
+(within ``64 ulp`` of it: the regime was not really consistent, e.g. ``select_regime`` reported
+no consistent choice), that event is not applied: the guard is disarmed for a short probe
+interval (``min(max_step, 1e-3 s)``), after which the guards are evaluated afresh — the compiled
+solver similarly ignores a non-positive guard until it has been seen positive. Such cases are
+counted in ``diagnostics["ignored_start_events"]``.
+
+Peaks
+-----
+|θ| peaks are found exactly: θ̇ = 0 is a non-terminal event while the statue rocks; |u| peaks
+are at segment ends and events (|u| is monotone while u̇ keeps its sign, and u̇ = 0 only at a STOP
+event or while stuck).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from ..contact.impact import friction_ratio, impact_coulomb, impact_paper
+from ..excitation.base import (
+    KIND_HARMONIC,
+    KIND_RAMP,
+    KIND_RECTANGLE,
+    KIND_RICKER,
+    KIND_SAMPLED,
+    KIND_SINE_PULSE,
+    KIND_ZERO,
+)
+from ..excitation.signal import evaluate
+from ..models.dynamics import accelerations, kinetic_energy
+from ..models.modes import EXCEED, FALL, IMPACT, N_GUARDS, STOP, evaluate_guards, select_regime
+from ..models.parameters import B, CAN_SLIDE, ETA, H, I_O, IMPACT_COULOMB, M, M2, MU_K, MU_S, REST_VEL, pack
+from ..models.regimes import EventKind, Regime
+from ..results.response import Impact
+from ..simulation import Options
+from .compiled import (
+    EV_BREAKPOINT,
+    EV_EXCEED,
+    EV_FALL,
+    EV_IMPACT,
+    EV_SETTLE,
+    EV_SLIP,
+    EV_STOP,
+    EV_UPLIFT,
+    N_EVENT_FIELDS,
+)
+
+__all__ = ["simulate_reference", "integrate_reference"]
+
+_START_TOL = 64.0 * np.finfo(float).eps  # relative: "an event at the segment start"
+_SENTINEL = 1e-300  # |value| standing for a guard's right-hand limit sign at the segment start
+ARMED, ZERO, DISARMED = 0, 1, 2  # how a guard is watched during a solve_ivp call
+
+
+class _Singular(Exception):
+    """The slide-rock system is singular at some (t, y)."""
+
+    def __init__(self, t):
+        super().__init__(f"singular slide-rock equations at t = {t!r}")
+        self.t = t
+
+
+def _regime(sig, s):
+    return (1 if s != 0 else 0) + (2 if sig != 0 else 0)
+
+
+def _piece_function(signal, piece):
+    """The acceleration (m/s²) of ``signal`` as a plain Python function of t on the piece of the
+    motion containing ``piece`` (the twin of ``excitation.signal.evaluate``)."""
+    kind, params, times, values = signal
+    kind = int(kind)
+    if kind == KIND_ZERO:
+        return None
+    if kind == KIND_SAMPLED:
+        n = times.shape[0]
+        if piece < times[0] or piece > times[n - 1]:
+            return None
+        i = int(np.searchsorted(times, piece, side="right")) - 1
+        i = min(i, n - 2)
+        t_i, dt_i = float(times[i]), float(times[i + 1] - times[i])
+        v_i, dv_i = float(values[i]), float(values[i + 1] - values[i])
+        return lambda t: v_i + (t - t_i) / dt_i * dv_i
+    known = (KIND_HARMONIC, KIND_SINE_PULSE, KIND_RECTANGLE, KIND_RICKER, KIND_RAMP)
+    if kind in known and (piece < 0.0 or piece > params[3]):
+        return None
+    a0, a1, a2 = float(params[0]), float(params[1]), float(params[2])
+    if kind in (KIND_HARMONIC, KIND_SINE_PULSE):
+        cos = math.cos
+        return lambda t: a0 * cos(a1 * t + a2)
+    if kind == KIND_RECTANGLE:
+        return lambda t: a0
+    if kind == KIND_RICKER:
+        exp, pi = math.exp, math.pi
+        return lambda t: a0 * (1.0 - 2.0 * (pi * a1 * (t - a2)) ** 2) * exp(-((pi * a1 * (t - a2)) ** 2))
+    if kind == KIND_RAMP:
+        return lambda t: a0 * t
+    # A kind this module does not know: the compiled evaluator.
+    return lambda t: float(evaluate(kind, params, times, values, t, piece))
+
+
+def _breakpoints(motion, t0, t_end):
+    bp = np.asarray(motion.breakpoints, dtype=float)
+    return np.unique(bp[(bp > t0) & (bp < t_end)])
+
+
+def _active_guards(p, sig, s, exceeded):
+    out = []
+    if sig == 0:
+        if p[CAN_SLIDE] > 0.5:
+            out += [0, 1]
+    else:
+        out.append(STOP)
+    if s == 0:
+        out += [3, 4]
+    else:
+        out.append(IMPACT)
+        if not exceeded:
+            out.append(EXCEED)
+        out.append(FALL)
+    return out
+
+
+def integrate_reference(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_step, save_dt, save,
+                        max_events):
+    """Integrate the hybrid system from ``t0`` to ``t_end`` with SciPy's DOP853.
+
+    Arguments as :func:`rocking.solver.compiled.integrate` (``sig_h``/``sig_v`` are
+    ``excitation.base.Signal`` tuples, ``y_init`` holds at least (u, u̇, θ, θ̇)). Returns a dict:
+    ``t``, ``state`` (n×4), ``regime``, ``on_grid`` (True for the uniform-grid rows; the other
+    rows are the states just before and after each event, as in the compiled output),
+    ``event_table`` (compiled layout), ``status`` and the scalar results.
+    """
+    sig_h = tuple(sig_h)
+    sig_v = tuple(sig_v)
+    y = np.zeros(4)
+    y[:] = np.asarray(y_init, dtype=float)[:4]
+    nb = breakpoints.shape[0]
+    ib = 0
+    t = float(t0)
+    t_end = float(t_end)
+
+    n_grid = int(math.floor((t_end - t0) / save_dt + 1e-9)) + 1 if save else 0
+    grid = t0 + np.arange(n_grid) * save_dt
+    t_out, y_out, r_out, g_out = [], [], [], []
+    next_grid = 0
+    events = []  # rows in the layout of the compiled event table
+    status = "completed"
+    exceeded = False
+    impacts = 0
+    indeterminate = 0
+    ignored_start = 0
+    n_rhs = 0
+    n_calls = 0
+    peak_theta = 0.0
+    peak_u = 0.0
+    overturn_time = math.nan
+    exceed_time = math.nan
+    first_rock = math.nan
+    first_slide = math.nan
+    gbuf = np.empty(N_GUARDS)
+    g_start = np.empty(N_GUARDS)
+    override = {}  # guard index -> mode forced at the next restart (same instant)
+
+    def stop_time():
+        return min(float(breakpoints[ib]), t_end) if ib < nb else t_end
+
+    def record(tt, yy, regime, on_grid):
+        t_out.append(tt)
+        y_out.append(np.array(yy[:4], dtype=float))
+        r_out.append(regime)
+        g_out.append(on_grid)
+
+    def cross_breakpoint():
+        """At a jump of the floor motion (t = t_stop < t_end): the regime may change here."""
+        nonlocal ib, sig, s, indeterminate, first_rock, first_slide
+        if not (t >= t_stop and t < t_end):
+            return
+        ib += 1
+        t_next = stop_time()
+        piece_next = t + 0.5 * (t_next - t)
+        fh2, fv2 = _piece_function(sig_h, piece_next), _piece_function(sig_v, piece_next)
+        a2 = fh2(t) if fh2 else 0.0
+        av2 = fv2(t) if fv2 else 0.0
+        sig2, s2, ok2 = select_regime(p, y, s, a2, av2, False, False)
+        sig2, s2 = int(sig2), int(s2)
+        if not ok2:
+            indeterminate += 1
+        if sig2 != sig or s2 != s:
+            if len(events) < max_events:
+                events.append((t, EV_BREAKPOINT, _regime(sig, s), _regime(sig2, s2), y[1], y[1], y[3], y[3], 0.0, 0.0))
+            if s2 != 0 and math.isnan(first_rock):
+                first_rock = t
+            if sig2 != 0 and math.isnan(first_slide):
+                first_slide = t
+        sig, s = sig2, s2
+
+    while ib < nb and breakpoints[ib] <= t:
+        ib += 1
+    t_stop = stop_time()
+    piece = t + 0.5 * (t_stop - t)
+    fh, fv = _piece_function(sig_h, piece), _piece_function(sig_v, piece)
+    a = fh(t) if fh else 0.0
+    av = fv(t) if fv else 0.0
+    s_init = 0
+    if y[2] != 0.0:
+        s_init = 1 if y[2] > 0.0 else -1
+    elif y[3] != 0.0:
+        s_init = 1 if y[3] > 0.0 else -1
+    sig, s, ok = select_regime(p, y, s_init, a, av, False, False)
+    sig, s = int(sig), int(s)
+    if not ok:
+        indeterminate += 1
+    if s != 0:
+        first_rock = t
+    if sig != 0:
+        first_slide = t
+
+    try:
+        while t < t_end:
+            while ib < nb and breakpoints[ib] <= t:
+                ib += 1
+            t_stop = stop_time()
+            if t_stop - t <= _START_TOL * max(1.0, abs(t)):
+                t = t_stop  # a sliver before a breakpoint: nothing moves measurably
+                cross_breakpoint()
+            else:
+                piece = t + 0.5 * (t_stop - t)
+                fh, fv = _piece_function(sig_h, piece), _piece_function(sig_v, piece)
+                sig_c, s_c, exc_c = sig, s, exceeded
+                t_start = t
+
+                def accel(tt):
+                    return (fh(tt) if fh else 0.0), (fv(tt) if fv else 0.0)
+
+                def rhs(tt, yy):
+                    nonlocal n_rhs
+                    n_rhs += 1
+                    ag, avg = accel(tt)
+                    udd, thdd, okk = accelerations(p, sig_c, s_c, yy[1], yy[2], yy[3], ag, avg)
+                    if not okk:
+                        raise _Singular(tt)
+                    return np.array([yy[1], udd, yy[3], thdd])
+
+                cache_key = [None]
+
+                def guards(tt, yy):
+                    key = (tt, yy[0], yy[1], yy[2], yy[3])
+                    if cache_key[0] != key:
+                        ag, avg = accel(tt)
+                        evaluate_guards(p, sig_c, s_c, np.ascontiguousarray(yy, dtype=float), ag, avg, exc_c, gbuf)
+                        cache_key[0] = key
+                    return gbuf
+
+                a0, av0 = accel(t_start)
+                evaluate_guards(p, sig_c, s_c, y, a0, av0, exc_c, g_start)
+                active = _active_guards(p, sig_c, s_c, exc_c)
+                modes = {}
+                for i in active:
+                    g = g_start[i]
+                    modes[i] = override.get(i, ARMED if g > 0.0 else (ZERO if g == 0.0 else DISARMED))
+                override = {}
+
+                def make_event(i, mode):
+                    at_start = _SENTINEL if mode == ZERO else -_SENTINEL
+
+                    def ev(tt, yy):
+                        if tt == t_start and mode != ARMED and g_start[i] == 0.0:
+                            return at_start
+                        return float(guards(tt, yy)[i])
+
+                    ev.terminal = True
+                    ev.direction = 1 if mode == DISARMED else -1
+                    return ev
+
+                ev_funcs = [make_event(i, modes[i]) for i in active]
+                turning = s_c != 0
+                if turning:
+                    def ev_turn(tt, yy):
+                        return yy[3]
+
+                    ev_turn.terminal = False
+                    ev_turn.direction = 0
+                    ev_funcs.append(ev_turn)
+
+                n_calls += 1
+                res = solve_ivp(rhs, (t_start, t_stop), y, method="DOP853", rtol=rtol, atol=atol,
+                                max_step=max_step, events=ev_funcs, dense_output=True)
+                if res.status == -1:
+                    status = "step_failed"
+                    break
+                fired = -1
+                te = t_stop
+                if res.status == 1:
+                    best = math.inf
+                    for k, i in enumerate(active):
+                        if len(res.t_events[k]) and res.t_events[k][0] < best:
+                            best, fired = float(res.t_events[k][0]), i
+                    te = best
+                    near_start = te - t_start <= _START_TOL * max(1.0, abs(t_start))
+                    if modes[fired] == ZERO and near_start:
+                        # The guard does not leave zero upwards after all (the selected regime was
+                        # not consistent): ignore it until it has been positive, as the compiled
+                        # solver does. Restart at the same instant with it disarmed.
+                        ignored_start += 1
+                        override = {fired: DISARMED}
+                        continue
+                sol = res.sol
+                if turning:
+                    for tk, yk in zip(res.t_events[-1], res.y_events[-1]):
+                        if tk <= te:
+                            peak_theta = max(peak_theta, abs(float(yk[2])))
+
+                # Output grid up to the end of this piece (the state before any event).
+                if save:
+                    while next_grid < n_grid:
+                        tg = grid[next_grid]
+                        if tg > te + 1e-12 * (te - t_start):
+                            break
+                        if tg >= t_start:
+                            record(tg, sol(min(tg, te)), _regime(sig_c, s_c), True)
+                        next_grid += 1
+
+                t = te
+                y = np.array(sol(te) if fired >= 0 else res.y[:, -1], dtype=float)
+                peak_theta = max(peak_theta, abs(y[2]))
+                peak_u = max(peak_u, abs(y[0]))
+
+                if fired >= 0 and modes[fired] == DISARMED:
+                    # A disarmed guard came back to positive: restart here with it armed
+                    # (it is about zero now, and known to leave zero upwards).
+                    override = {fired: ZERO}
+                    continue
+                if fired < 0:
+                    cross_breakpoint()
+                    continue
+
+                # ---- transition at a terminal event (as in the compiled loop) ----
+                a, av = accel(t)
+                regime_before = _regime(sig, s)
+                ud_before, thd_before = float(y[1]), float(y[3])
+                lost = 0.0
+                ratio = 0.0
+                sig2, s2, ok = sig, s, True
+                if save:
+                    record(t, y, regime_before, False)
+                if fired == FALL:
+                    kind = EV_FALL
+                    overturn_time = t
+                    status = "overturned"
+                elif fired == EXCEED:
+                    kind = EV_EXCEED
+                    exceeded = True
+                    exceed_time = t
+                elif fired == IMPACT:
+                    kind = EV_IMPACT
+                    impacts += 1
+                    y[2] = 0.0
+                    t_before = kinetic_energy(p, s, y[1], 0.0, y[3])
+                    if p[IMPACT_COULOMB] > 0.5:
+                        ud1, thd1, fx, fy, okc = impact_coulomb(
+                            p[I_O], p[M], p[M2], p[B], p[H], p[ETA], p[MU_S], p[MU_K], p[CAN_SLIDE], y[1], y[3]
+                        )
+                        if not okc:
+                            indeterminate += 1
+                    else:
+                        ud1, thd1, fx, fy = impact_paper(p[M], p[M2], p[B], p[H], p[ETA], y[1], y[3])
+                    ratio = float(friction_ratio(fx, fy))
+                    s = -s
+                    y[1] = ud1
+                    y[3] = thd1
+                    if abs(thd1) < p[REST_VEL]:
+                        kind = EV_SETTLE
+                        y[3] = 0.0
+                        s = 0
+                    lost = float(t_before - kinetic_energy(p, s, y[1], 0.0, y[3]))
+                    sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
+                elif fired == STOP:
+                    kind = EV_STOP
+                    y[1] = 0.0
+                    sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
+                elif fired <= 1:
+                    kind = EV_SLIP
+                    sig2, s2, ok = select_regime(p, y, s, a, av, True, False)
+                else:
+                    kind = EV_UPLIFT
+                    sig2, s2, ok = select_regime(p, y, s, a, av, False, True)
+                if fired not in (FALL, EXCEED):
+                    if not ok:
+                        indeterminate += 1
+                    sig2, s2 = int(sig2), int(s2)
+                    if s2 != 0 and math.isnan(first_rock):
+                        first_rock = t
+                    if sig2 != 0 and math.isnan(first_slide):
+                        first_slide = t
+                    sig, s = sig2, s2
+                events.append((t, kind, regime_before, _regime(sig, s), ud_before, float(y[1]), thd_before,
+                               float(y[3]), lost, ratio))
+                if save and kind != EV_EXCEED:
+                    record(t, y, _regime(sig, s), False)
+                peak_u = max(peak_u, abs(y[0]))
+                if status == "overturned":
+                    break
+                if len(events) >= max_events:
+                    status = "max_events"
+                    break
+    except _Singular:
+        status = "singular"
+
+    if save and status != "overturned":
+        # Last grid point(s) reached exactly at t_end (the grid may overshoot it by 1e-9·save_dt).
+        while next_grid < n_grid:
+            tg = grid[next_grid]
+            if tg > t + 1e-9:
+                break
+            record(tg, y, _regime(sig, s), True)
+            next_grid += 1
+
+    return {
+        "t": np.array(t_out, dtype=float),
+        "state": np.array(y_out, dtype=float).reshape(-1, 4),
+        "regime": np.array(r_out, dtype=np.int8),
+        "on_grid": np.array(g_out, dtype=bool),
+        "event_table": np.array(events, dtype=float).reshape(-1, N_EVENT_FIELDS),
+        "status": status,
+        "overturn_time": overturn_time,
+        "exceeded_alpha_time": exceed_time,
+        "peak_rotation": peak_theta,
+        "peak_sliding": peak_u,
+        "residual_sliding": float(y[0]),
+        "impacts": impacts,
+        "first_rocking_time": first_rock,
+        "first_sliding_time": first_slide,
+        "final_state": y.copy(),
+        "end_time": t,
+        "diagnostics": {
+            "ignored_start_events": ignored_start,
+            "indeterminate": indeterminate,
+            "rhs_evaluations": n_rhs,
+            "solve_ivp_calls": n_calls,
+        },
+    }
+
+
+def simulate_reference(
+    system,
+    motion,
+    *,
+    duration: float | None = None,
+    options: Options = Options(),
+    initial_rotation: float = 0.0,
+    initial_angular_velocity: float = 0.0,
+    initial_sliding_velocity: float = 0.0,
+    save_dt: float | None = 0.01,
+) -> dict:
+    """Simulate ``system`` on ``motion`` with the SciPy reference solver.
+
+    Same model and options as :func:`rocking.simulate` (``options.rtol``/``atol``/``max_step``
+    are passed to ``solve_ivp``; ``options.save_dt`` is ignored in favour of ``save_dt``; with
+    ``save_dt=None`` the rule of ``simulate`` applies: the record's time step, else 0.01 s).
+
+    Returns
+    -------
+    dict
+        ``t`` (s, the uniform grid ``k·save_dt`` up to the end or the overturn), ``u``, ``u_dot``,
+        ``theta``, ``theta_dot``, ``regime`` (int codes of :class:`~rocking.Regime`) on that grid;
+        ``events``: list of ``(time, EventKind)``; ``event_regimes``: list of
+        ``(time, EventKind, Regime before, Regime after)``; ``event_table``: the same rows in the
+        layout of the compiled solver; ``impacts``: list of :class:`rocking.results.response.Impact`;
+        ``overturned`` (bool), ``overturn_time``, ``exceeded_alpha_time`` (s or None),
+        ``peak_rotation`` (rad), ``peak_sliding``, ``residual_sliding`` (m), ``status``,
+        ``first_rocking_time``, ``first_sliding_time``, ``end_time``, ``diagnostics``.
+    """
+    t_end = motion.duration if duration is None else float(duration)
+    if not math.isfinite(t_end) or t_end <= 0:
+        raise ValueError(f"duration must be a positive number, got {duration!r}")
+    if abs(initial_rotation) >= 0.5 * math.pi:
+        raise ValueError(f"initial_rotation must satisfy |θ0| < π/2, got {initial_rotation!r}")
+    if save_dt is None:
+        dt = getattr(motion, "dt", None)
+        save_dt = float(options.save_dt or dt or 0.01)
+    p = pack(system, gravity=options.gravity, normal_force=options.normal_force, impact=options.impact,
+             rest_velocity=options.rest_velocity)
+    y0 = np.array([0.0, initial_sliding_velocity, initial_rotation, initial_angular_velocity], dtype=float)
+    raw = integrate_reference(p, motion.signal(), motion.vertical_signal(), _breakpoints(motion, 0.0, t_end), 0.0,
+                              t_end, y0, options.rtol, options.atol, options.max_step, float(save_dt), True,
+                              int(options.max_events))
+    table = raw["event_table"]
+    rows = [(float(r[0]), EventKind(int(r[1])), Regime(int(r[2])), Regime(int(r[3]))) for r in table]
+    impacts = [Impact(*(float(v) for v in (r[0], r[4], r[5], r[6], r[7], r[8], r[9])))
+               for r in table if int(r[1]) in (EV_IMPACT, EV_SETTLE)]
+
+    def opt(x):
+        return None if math.isnan(x) else float(x)
+
+    # The uniform grid only: the rows at event instants (before/after) are left out.
+    keep = raw["on_grid"]
+    t = raw["t"]
+    state = raw["state"]
+    return {
+        "t": t[keep],
+        "u": state[keep, 0],
+        "u_dot": state[keep, 1],
+        "theta": state[keep, 2],
+        "theta_dot": state[keep, 3],
+        "regime": raw["regime"][keep].astype(int),
+        "events": [(r[0], r[1]) for r in rows],
+        "event_regimes": rows,
+        "event_table": table,
+        "impacts": impacts,
+        "overturned": raw["status"] == "overturned",
+        "overturn_time": opt(raw["overturn_time"]),
+        "exceeded_alpha_time": opt(raw["exceeded_alpha_time"]),
+        "peak_rotation": float(raw["peak_rotation"]),
+        "peak_sliding": float(raw["peak_sliding"]),
+        "residual_sliding": float(raw["residual_sliding"]),
+        "status": raw["status"],
+        "first_rocking_time": opt(raw["first_rocking_time"]),
+        "first_sliding_time": opt(raw["first_sliding_time"]),
+        "end_time": float(raw["end_time"]),
+        "diagnostics": raw["diagnostics"],
+    }

@@ -1,0 +1,207 @@
+"""The two-block model (paper §3): limits O16, never-rocks O17, frictionless invariants O18,
+impact friction O19, the equations against an independent sympy derivation, energy and symmetry."""
+
+import math
+
+import numpy as np
+import pytest
+from helpers import G, NO_MOTION, OPTS, alone, block
+from oracles import closed_forms as cf
+from oracles import lagrange
+
+import rocking as rk
+from rocking.models import dynamics
+from rocking.models.parameters import pack
+from rocking.models.regimes import EventKind, Regime
+
+FLOOR = rk.Friction(static=0.4, kinetic=0.3)
+PAPER_MOTION = rk.Harmonic(amplitude=6.75, frequency=1.2, cycles=30)
+
+
+def on_pedestal(statue, m1=1.0, friction=FLOOR, **kw):
+    return rk.System(statue=statue, pedestal=rk.Pedestal(mass=m1, friction=friction, **kw))
+
+
+# -- equations of motion against sympy --------------------------------------------------------
+@pytest.mark.parametrize("normal_force", ["full", "paper"])
+def test_accelerations_match_the_sympy_lagrangian(normal_force):
+    rng = np.random.default_rng(7)
+    for _ in range(200):
+        b, h = rng.uniform(0.1, 0.6), rng.uniform(0.6, 3.0)
+        m1, m2 = rng.uniform(0.0, 5.0), rng.uniform(0.2, 5.0)
+        mu_s = rng.uniform(0.05, 0.6)
+        mu_k = mu_s * rng.uniform(0.5, 1.0)
+        st = block(b, h, mass=m2)
+        sysm = on_pedestal(st, m1=m1, friction=rk.Friction(static=mu_s, kinetic=mu_k))
+        p = pack(sysm, gravity=G, normal_force=normal_force, impact="coulomb", rest_velocity=1e-6)
+        params = dict(b=b, h=h, m1=m1, m2=m2, g=G, mu_s=mu_s, mu_k=mu_k, normal_force=normal_force)
+        s, sig = int(rng.choice([-1, 1])), int(rng.choice([-1, 1]))
+        theta = s * rng.uniform(0.0, 0.9) * st.slenderness
+        ud, thd = sig * rng.uniform(0.01, 1.0), rng.uniform(-2, 2)
+        a, av = rng.uniform(-8, 8), rng.uniform(-2, 2)
+        for regime, (rsig, rs) in {"stick-rock": (0, s), "slide-rock": (sig, s), "slide-rest": (sig, 0)}.items():
+            udd, thdd, ok = dynamics.accelerations(p, rsig, rs, ud, theta if rs else 0.0, thd if rs else 0.0, a, av)
+            state = (0.0, ud, theta if rs else 0.0, thd if rs else 0.0)
+            ref = lagrange.accelerations(regime, params, state, a, av, s=s, sigma=sig)
+            assert ok
+            np.testing.assert_allclose([udd, thdd], ref[:2], rtol=1e-10, atol=1e-10)
+            if rs:
+                f, n = dynamics.floor_forces(p, rs, theta, thd, a, av, udd, thdd)
+                px, py = dynamics.statue_contact(p, rs, theta, thd, a, av, udd, thdd)
+                np.testing.assert_allclose([px, py], ref[4:6], rtol=1e-10, atol=1e-10)
+                if normal_force == "full":
+                    np.testing.assert_allclose([f, n], [ref[3], ref[2]], rtol=1e-10, atol=1e-10)
+
+
+def test_worked_check_case_10a_at_t0():
+    """derivation §3.5: held pedestal would need 10.47 N against μs N = 8.15 N → slide + rock."""
+    st = rk.Statue(width=1.0, height=4.0, mass=1.0, restitution=0.8)
+    p = pack(on_pedestal(st), gravity=G, normal_force="full", impact="coulomb", rest_velocity=1e-6)
+    udd, thdd, _ = dynamics.accelerations(p, 0, -1, 0.0, 0.0, 0.0, 6.75, 0.0)
+    f, n = dynamics.floor_forces(p, -1, 0.0, 0.0, 6.75, 0.0, udd, thdd)
+    assert f == pytest.approx(10.47, abs=5e-3) and 0.4 * n == pytest.approx(8.15, abs=5e-3)
+    r = rk.simulate(on_pedestal(st), PAPER_MOTION, duration=0.1, options=OPTS)
+    assert Regime(int(r.regime[0])) == Regime.SLIDE_ROCK
+
+
+# -- O16 limits ---------------------------------------------------------------------------------
+def test_o16_infinite_floor_friction_is_the_statue_alone():
+    st = rk.Statue(width=1.0, height=4.0, mass=1.0, restitution=0.8)
+    a = rk.simulate(alone(st), PAPER_MOTION, options=OPTS)
+    b = rk.simulate(on_pedestal(st, friction=rk.Friction(static=1e6, kinetic=1e6)), PAPER_MOTION, options=OPTS)
+    np.testing.assert_allclose(b.theta, a.theta, atol=1e-9)
+    assert b.summary()["peak_sliding"] == 0.0
+
+
+def test_o16_massless_statue_leaves_a_coulomb_block():
+    pedestal_only = rk.simulate(alone(block(5.0, 0.5, friction=FLOOR)), PAPER_MOTION, options=OPTS)
+    st = rk.Statue(width=1.0, height=4.0, mass=1e-9)
+    with_statue = rk.simulate(on_pedestal(st), PAPER_MOTION, options=OPTS)
+    # Event instants differ (the weightless statue still rocks), so compare on a common grid.
+    grid = np.linspace(0.0, 25.0, 2501)
+    np.testing.assert_allclose(np.interp(grid, with_statue.t, with_statue.u),
+                               np.interp(grid, pedestal_only.t, pedestal_only.u), atol=1e-7)
+
+
+def test_o16_massless_pedestal_is_the_single_block_slide_rock_model():
+    friction = rk.Friction(static=0.45, kinetic=0.35)
+    st = rk.Statue(width=1.0, height=3.0, mass=2.0, restitution=0.85, friction=friction)
+    single = rk.simulate(alone(st), PAPER_MOTION, options=OPTS)
+    stacked = rk.simulate(on_pedestal(rk.Statue(width=1.0, height=3.0, mass=2.0, restitution=0.85), m1=0.0,
+                                      friction=friction), PAPER_MOTION, options=OPTS)
+    np.testing.assert_allclose(stacked.theta, single.theta, atol=1e-12)
+    np.testing.assert_allclose(stacked.u, single.u, atol=1e-12)
+
+
+# -- O17 ----------------------------------------------------------------------------------------
+@pytest.mark.parametrize("motion", [PAPER_MOTION, rk.Harmonic(amplitude=12.0, frequency=2.5, cycles=10, form="sin"),
+                                    rk.RickerPulse(amplitude=15.0, frequency=1.0)])
+def test_o17_statue_never_rocks_when_mu_s_at_most_tan_alpha(motion):
+    st = rk.Statue(width=1.0, height=2.0, mass=3.0)  # tan α = 0.5
+    for mu_s in (0.5, 0.4, 0.2):
+        r = rk.simulate(on_pedestal(st, m1=2.0, friction=rk.Friction(static=mu_s, kinetic=0.8 * mu_s)), motion, options=OPTS)
+        assert r.summary()["first_rocking_time"] is None
+        assert r.summary()["peak_sliding"] > 0
+
+
+# -- O18 frictionless floor ---------------------------------------------------------------------
+@pytest.mark.parametrize("H,m2", [(4.0, 1.0), (4.0, 4.0), (2.0, 1.0)])
+def test_o18_frictionless_floor_release(H, m2):
+    st = rk.Statue(width=1.0, height=H, mass=m2)
+    theta0 = 0.5 * st.slenderness
+    sysm = on_pedestal(st, friction=rk.Friction(static=0.0, kinetic=0.0))
+    r = rk.simulate(sysm, NO_MOTION, duration=1.0, options=OPTS, initial_rotation=theta0)
+    ref = cf.frictionless_release(0.5, H / 2, 1.0, m2, theta0, g=G)
+    imp = r.impacts[0]
+    assert imp.time == pytest.approx(ref.t1, abs=1e-8)
+    assert imp.theta_dot_before == pytest.approx(ref.theta_dot, abs=1e-8)
+    assert imp.u_dot_before == pytest.approx(ref.u_dot, abs=1e-8)
+    i = np.flatnonzero(r.t == imp.time)[0]
+    assert r.u[i] == pytest.approx(ref.u, abs=1e-8)
+    # With no floor impulse the system's momentum is conserved: η_stack (O18, O19 table).
+    eta = cf.eta_stack_frictionless(0.5, H / 2, 1.0, m2)
+    assert imp.theta_dot_after / imp.theta_dot_before == pytest.approx(eta, rel=1e-12)
+    assert (1.0 + m2) * imp.u_dot_after + m2 * H / 2 * imp.theta_dot_after == pytest.approx(
+        (1.0 + m2) * imp.u_dot_before + m2 * H / 2 * imp.theta_dot_before, abs=1e-12)
+    assert r.energy["relative_balance_error"] < 1e-8
+
+
+def test_o18_table_values():
+    rows = {(4.0, 1.0): (0.55652972, -0.49670213, 0.12405637, 0.49670213, 0.86363636),
+            (4.0, 4.0): (0.45049012, -0.60558694, 0.19849020, 0.96893911, 0.79729730),
+            (2.0, 1.0): (0.41974610, -1.21738173, 0.12156421, 0.60869087, 0.57142857)}
+    for (H, m2), (t1, thd, u, ud, eta) in rows.items():
+        st = rk.Statue(width=1.0, height=H, mass=m2)
+        r = rk.simulate(on_pedestal(st, friction=rk.Friction(static=0.0)), NO_MOTION, duration=1.0, options=OPTS,
+                        initial_rotation=0.5 * st.slenderness)
+        imp = r.impacts[0]
+        np.testing.assert_allclose([imp.time, imp.theta_dot_before, imp.u_dot_before, imp.theta_dot_after / imp.theta_dot_before],
+                                   [t1, thd, ud, eta], atol=5e-8)
+
+
+# -- O19 ----------------------------------------------------------------------------------------
+@pytest.mark.parametrize("H,housner,r08", [(2, 0.3529, 0.2222), (3, 0.2432, 0.3333), (4, 0.1846, 0.4444), (5, 0.1485, 0.5556)])
+def test_o19_friction_needed_by_an_impact_on_a_held_pedestal(H, housner, r08):
+    for restitution, expected in ((None, housner), (0.8, r08)):
+        st = rk.Statue(width=1.0, height=H, mass=1.0, restitution=restitution)
+        held = on_pedestal(st, friction=rk.Friction(static=10.0, kinetic=10.0))
+        r = rk.simulate(held, NO_MOTION, duration=1.5, options=OPTS, initial_rotation=0.5 * st.slenderness)
+        eta = st.effective_restitution
+        assert r.impacts[0].friction_needed == pytest.approx(H / 2 / 0.5 * (1 - eta) / (1 + eta), rel=1e-10)
+        assert r.impacts[0].friction_needed == pytest.approx(expected, abs=5e-5)
+        assert r.impacts[0].theta_dot_after / r.impacts[0].theta_dot_before == pytest.approx(eta, rel=1e-12)
+
+
+def test_o19_paper_rule_flags_missing_floor_friction_and_coulomb_rule_slips():
+    """12b (m2 = 6, H = 4, r = 0.8): the paper's rule needs 0.444 > μs = 0.4 at impacts."""
+    st = rk.Statue(width=1.0, height=4.0, mass=6.0, restitution=0.8)
+    motion = rk.Harmonic(amplitude=6.75, frequency=1.2, cycles=24)
+    paper = rk.simulate(on_pedestal(st), motion, options=rk.Options(gravity=G, impact="paper"))
+    coulomb = rk.simulate(on_pedestal(st), motion, options=OPTS)
+    assert paper.summary()["first_sliding_time"] is None
+    assert any("more floor friction" in w for w in paper.warnings)
+    slip = coulomb.summary()["first_sliding_time"]
+    assert slip == pytest.approx(coulomb.impacts[0].time, abs=1e-12)
+
+
+# -- energy, symmetry -----------------------------------------------------------------------------
+@pytest.mark.parametrize("impact", ["coulomb", "paper"])
+def test_energy_ledger_balances_with_friction_and_impacts(impact):
+    st = rk.Statue(width=1.0, height=4.0, mass=2.0, restitution=0.8)
+    r = rk.simulate(on_pedestal(st), rk.Harmonic(amplitude=6.75, frequency=1.2, cycles=24),
+                    options=rk.Options(gravity=G, impact=impact))
+    e = r.energy
+    assert r.summary()["impacts"] > 10 and e["friction_dissipation"] > 0
+    assert e["relative_balance_error"] < 1e-7
+
+
+def test_mirror_symmetry_two_blocks():
+    st = rk.Statue(width=1.0, height=4.0, mass=3.0, restitution=0.8)
+    a = rk.simulate(on_pedestal(st), rk.Harmonic(amplitude=6.75, frequency=1.2, cycles=10), options=OPTS)
+    b = rk.simulate(on_pedestal(st), rk.Harmonic(amplitude=-6.75, frequency=1.2, cycles=10), options=OPTS)
+    np.testing.assert_allclose(b.theta, -a.theta, atol=1e-12)
+    np.testing.assert_allclose(b.u, -a.u, atol=1e-12)
+
+
+def test_assumption_checks_report_pedestal_uplift_and_top_slip():
+    st = rk.Statue(width=0.4, height=2.0, mass=50.0, friction=rk.Friction(static=0.2, kinetic=0.2))
+    ped = rk.Pedestal(mass=5.0, friction=rk.Friction(static=0.6, kinetic=0.5), width=0.5, height=0.8)
+    r = rk.simulate(rk.System(statue=st, pedestal=ped), rk.Harmonic(amplitude=6.0, frequency=1.0, cycles=4), options=OPTS)
+    text = " ".join(r.warnings)
+    assert "slip on the pedestal" in text and "uplift" in text
+    assert r.summary()["required_top_friction"] > 0.2
+
+
+def test_convergence_as_tolerances_tighten():
+    st = rk.Statue(width=1.0, height=4.0, mass=2.0, restitution=0.8)
+    motion = rk.Harmonic(amplitude=6.75, frequency=1.2, cycles=6)
+    ref = rk.simulate(on_pedestal(st), motion, options=rk.Options(gravity=G, rtol=1e-13, atol=1e-15))
+    errors = []
+    for rtol in (1e-6, 1e-8, 1e-10):
+        r = rk.simulate(on_pedestal(st), motion, options=rk.Options(gravity=G, rtol=rtol, atol=rtol * 1e-2))
+        t_ref = np.array([i.time for i in ref.impacts])
+        t_run = np.array([i.time for i in r.impacts])
+        assert t_run.size == t_ref.size
+        errors.append(max(np.max(np.abs(t_run - t_ref)), abs(r.peak_rotation - ref.peak_rotation)))
+    assert errors[0] > errors[1] > errors[2]
+    assert errors[2] < 1e-8
