@@ -51,3 +51,66 @@ def evaluate(kind, params, times, values, t, piece):
     if kind == KIND_RAMP:
         return params[0] * t
     return 0.0
+
+
+# Local forms: inside one integration step a signal is one smooth formula, so its coefficients
+# are worked out once per step ("localised") and the right-hand side evaluates only that
+# formula — no array look-ups, no branches on the kind in the innermost loop.
+LOCAL_ZERO, LOCAL_LINEAR, LOCAL_COSINE, LOCAL_RICKER = 0.0, 1.0, 2.0, 3.0
+LOCAL_SIZE = 5
+
+
+@njit(cache=True)
+def localise(kind, params, times, values, piece, loc, k0):
+    """Write into loc[k0:k0+5] the formula valid on the piece containing time ``piece``:
+    (LOCAL_LINEAR, a0, slope, t0, 0) for a0 + slope·(t − t0); (LOCAL_COSINE, A, ω, φ, 0);
+    (LOCAL_RICKER, a_p, f, t_0, 0); or LOCAL_ZERO."""
+    loc[k0] = LOCAL_ZERO
+    loc[k0 + 1] = 0.0
+    loc[k0 + 2] = 0.0
+    loc[k0 + 3] = 0.0
+    loc[k0 + 4] = 0.0
+    if kind == KIND_SAMPLED:
+        n = times.shape[0]
+        if piece < times[0] or piece > times[n - 1]:
+            return
+        i = np.searchsorted(times, piece, side="right") - 1
+        if i >= n - 1:
+            i = n - 2
+        loc[k0] = LOCAL_LINEAR
+        loc[k0 + 1] = values[i]
+        loc[k0 + 2] = (values[i + 1] - values[i]) / (times[i + 1] - times[i])
+        loc[k0 + 3] = times[i]
+        return
+    if kind < 0 or piece < 0.0 or piece > params[3]:
+        return
+    if kind == KIND_HARMONIC or kind == KIND_SINE_PULSE:
+        loc[k0] = LOCAL_COSINE
+        loc[k0 + 1] = params[0]
+        loc[k0 + 2] = params[1]
+        loc[k0 + 3] = params[2]
+    elif kind == KIND_RECTANGLE:
+        loc[k0] = LOCAL_LINEAR
+        loc[k0 + 1] = params[0]
+    elif kind == KIND_RAMP:
+        loc[k0] = LOCAL_LINEAR
+        loc[k0 + 2] = params[0]
+    elif kind == KIND_RICKER:
+        loc[k0] = LOCAL_RICKER
+        loc[k0 + 1] = params[0]
+        loc[k0 + 2] = params[1]
+        loc[k0 + 3] = params[2]
+
+
+@njit(cache=True)
+def local_value(loc, k0, t):
+    """Value at time t of the localised formula in loc[k0:k0+5]."""
+    mode = loc[k0]
+    if mode == LOCAL_LINEAR:
+        return loc[k0 + 1] + loc[k0 + 2] * (t - loc[k0 + 3])
+    if mode == LOCAL_COSINE:
+        return loc[k0 + 1] * math.cos(loc[k0 + 2] * t + loc[k0 + 3])
+    if mode == LOCAL_RICKER:
+        x = (math.pi * loc[k0 + 2] * (t - loc[k0 + 3])) ** 2
+        return loc[k0 + 1] * (1.0 - 2.0 * x) * math.exp(-x)
+    return 0.0

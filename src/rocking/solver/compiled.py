@@ -14,7 +14,7 @@ import numpy as np
 from numba import njit
 
 from ..contact.impact import friction_ratio, impact_coulomb, impact_paper
-from ..excitation.signal import evaluate
+from ..excitation.signal import LOCAL_SIZE, local_value, localise
 from ..integrators import dopri5
 from ..models.dynamics import (
     accelerations,
@@ -56,16 +56,23 @@ N_STATE = 6  # u, u̇, θ, θ̇, input work W, friction dissipation D
 
 
 @njit(cache=True)
-def _ground(sig_h, sig_v, t, piece):
+def _localise(sig_h, sig_v, piece, loc):
+    """Coefficients of the floor motion on the piece containing ``piece`` (see signal.localise)."""
     kh, ph, th, vh = sig_h
     kv, pv, tv, vv = sig_v
-    return evaluate(kh, ph, th, vh, t, piece), evaluate(kv, pv, tv, vv, t, piece)
+    localise(kh, ph, th, vh, piece, loc, 0)
+    localise(kv, pv, tv, vv, piece, loc, LOCAL_SIZE)
 
 
 @njit(cache=True)
-def rhs(t, y, args, out):
-    p, sig, s, sig_h, sig_v, piece = args
-    a, av = _ground(sig_h, sig_v, t, piece)
+def _ground(loc, t):
+    """(a_g, a_v) at time t, m/s²."""
+    return local_value(loc, 0, t), local_value(loc, LOCAL_SIZE, t)
+
+
+@njit(cache=True)
+def rhs(t, y, p, sig, s, loc, out):
+    a, av = _ground(loc, t)
     udd, thdd, _ = accelerations(p, sig, s, y[1], y[2], y[3], a, av)
     p_in, p_fric = power(p, sig, s, y[1], y[2], y[3], a, av, udd, thdd)
     out[0] = y[1]
@@ -77,13 +84,13 @@ def rhs(t, y, args, out):
 
 
 @njit(cache=True)
-def _step(t, y, h, K, work, y_new, args):
+def _step(t, y, h, K, work, y_new, p, sig, s, loc):
     """One Dormand–Prince step; K[0] = rhs(t, y) on entry, K[6] = rhs(t + h, y_new) on exit."""
     for stage in range(1, 6):
         dopri5.stage_input(y, K, h, stage, work)
-        rhs(t + dopri5.C[stage] * h, work, args, K[stage])
+        rhs(t + dopri5.C[stage] * h, work, p, sig, s, loc, K[stage])
     dopri5.advance(y, K, h, y_new)
-    rhs(t + h, y_new, args, K[6])
+    rhs(t + h, y_new, p, sig, s, loc, K[6])
 
 
 @njit(cache=True)
@@ -92,15 +99,15 @@ def _regime(sig, s):
 
 
 @njit(cache=True)
-def _guard_at(p, sig, s, y0, K, h, x, sig_h, sig_v, t0, piece, exceeded, work, gbuf, index):
+def _guard_at(p, sig, s, y0, K, h, x, loc, t0, exceeded, work, gbuf, index):
     dopri5.dense(y0, K, h, x, work)
-    a, av = _ground(sig_h, sig_v, t0 + x * h, piece)
+    a, av = _ground(loc, t0 + x * h)
     evaluate_guards(p, sig, s, work, a, av, exceeded, gbuf)
     return gbuf[index]
 
 
 @njit(cache=True)
-def _locate(p, sig, s, y0, K, h, sig_h, sig_v, t0, piece, exceeded, work, gbuf, index, g_lo, g_hi, x0=0.0):
+def _locate(p, sig, s, y0, K, h, loc, t0, exceeded, work, gbuf, index, g_lo, g_hi, x0=0.0):
     """Where guard ``index`` first reaches zero in [x0, 1] of the step, as a fraction of
     [x0, 1] (Illinois method on the dense output; g(x0) = g_lo > 0 ≥ g_hi = g(1))."""
     lo, hi = 0.0, 1.0
@@ -111,7 +118,7 @@ def _locate(p, sig, s, y0, K, h, sig_h, sig_v, t0, piece, exceeded, work, gbuf, 
         x = (lo * fhi - hi * flo) / (fhi - flo)
         if not (lo < x < hi):
             x = 0.5 * (lo + hi)
-        fx = _guard_at(p, sig, s, y0, K, h, x0 + (1.0 - x0) * x, sig_h, sig_v, t0, piece, exceeded, work, gbuf, index)
+        fx = _guard_at(p, sig, s, y0, K, h, x0 + (1.0 - x0) * x, loc, t0, exceeded, work, gbuf, index)
         if fx <= 0.0:
             hi, fhi = x, fx
             if side == -1:
@@ -128,19 +135,19 @@ def _locate(p, sig, s, y0, K, h, sig_h, sig_v, t0, piece, exceeded, work, gbuf, 
 
 
 @njit(cache=True)
-def _positive_inside(p, sig, s, y0, K, h, sig_h, sig_v, t0, piece, exceeded, work, gbuf, index):
+def _positive_inside(p, sig, s, y0, K, h, loc, t0, exceeded, work, gbuf, index):
     """A fraction x of the step where guard ``index`` is positive, or −1. For the impact guard
     the best candidate is the turning point of θ (θ̇ = 0); otherwise 32 samples are tried."""
     if index == IMPACT:
         dopri5.dense(y0, K, h, 1.0, work)
         if (y0[3] > 0.0) != (work[3] > 0.0):
             x = _theta_dot_root(y0, K, h, work)
-            if _guard_at(p, sig, s, y0, K, h, x, sig_h, sig_v, t0, piece, exceeded, work, gbuf, index) > 0.0:
+            if _guard_at(p, sig, s, y0, K, h, x, loc, t0, exceeded, work, gbuf, index) > 0.0:
                 return x
     x_best = -1.0
     for k in range(1, 32):
         x = k / 32.0
-        if _guard_at(p, sig, s, y0, K, h, x, sig_h, sig_v, t0, piece, exceeded, work, gbuf, index) > 0.0:
+        if _guard_at(p, sig, s, y0, K, h, x, loc, t0, exceeded, work, gbuf, index) > 0.0:
             x_best = x
     return x_best
 
@@ -213,8 +220,10 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
     while ib < nb and breakpoints[ib] <= t:
         ib += 1
     t_stop = min(breakpoints[ib], t_end) if ib < nb else t_end
-    piece = t + 0.5 * (t_stop - t)
-    a, av = _ground(sig_h, sig_v, t, piece)
+    loc = np.zeros(2 * LOCAL_SIZE)
+    loc_next = np.zeros(2 * LOCAL_SIZE)
+    _localise(sig_h, sig_v, t + 0.5 * (t_stop - t), loc)
+    a, av = _ground(loc, t)
     s_init = 0
     if y[2] != 0.0:
         s_init = 1 if y[2] > 0.0 else -1
@@ -233,11 +242,9 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
             while ib < nb and breakpoints[ib] <= t:
                 ib += 1
             t_stop = min(breakpoints[ib], t_end) if ib < nb else t_end
-            piece = t + 0.5 * (t_stop - t)
-        args = (p, sig, s, sig_h, sig_v, piece)
-        if fresh:
-            rhs(t, y, args, K[0])
-            a, av = _ground(sig_h, sig_v, t, piece)
+            _localise(sig_h, sig_v, t + 0.5 * (t_stop - t), loc)
+            rhs(t, y, p, sig, s, loc, K[0])
+            a, av = _ground(loc, t)
             evaluate_guards(p, sig, s, y, a, av, exceeded, g0)
             for i in range(N_GUARDS):
                 armed[i] = g0[i] > 0.0
@@ -246,7 +253,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
         # Avoid a sliver of a step before a breakpoint.
         if t_stop - (t + h) < 1e-3 * h:
             h = t_stop - t
-        _step(t, y, h, K, work, y_new, args)
+        _step(t, y, h, K, work, y_new, p, sig, s, loc)
         err = dopri5.error_norm(y, y_new, K, h, rtol, atol, 4)
         if not (err <= 1.0):
             rejected += 1
@@ -264,7 +271,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
             t1 = t_stop
 
         # Guards at the end of the step (same piece of the motion as the step).
-        a1, av1 = _ground(sig_h, sig_v, t1, piece)
+        a1, av1 = _ground(loc, t1)
         evaluate_guards(p, sig, s, y_new, a1, av1, exceeded, g1)
         first = -1
         x_first = 2.0
@@ -272,11 +279,11 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
             if g1[i] > 0.0:
                 continue
             if armed[i] and g0[i] > 0.0:
-                x = _locate(p, sig, s, y, K, h, sig_h, sig_v, t, piece, exceeded, work, gbuf, i, g0[i], g1[i])
+                x = _locate(p, sig, s, y, K, h, loc, t, exceeded, work, gbuf, i, g0[i], g1[i])
             else:
                 # A guard that started on zero (just after an event) may have gone positive and
                 # back within this step: find an interior point where it is positive.
-                x_lo = _positive_inside(p, sig, s, y, K, h, sig_h, sig_v, t, piece, exceeded, work, gbuf, i)
+                x_lo = _positive_inside(p, sig, s, y, K, h, loc, t, exceeded, work, gbuf, i)
                 if x_lo < 0.0:
                     # A friction or rocking threshold exactly tied when the regime was chosen
                     # (e.g. a pulse whose phase starts rocking at t = 0) and crossed right away:
@@ -285,9 +292,9 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                         if g1[i] < 0.0:
                             x_first, first = 0.0, i
                     continue
-                g_lo = _guard_at(p, sig, s, y, K, h, x_lo, sig_h, sig_v, t, piece, exceeded, work, gbuf, i)
+                g_lo = _guard_at(p, sig, s, y, K, h, x_lo, loc, t, exceeded, work, gbuf, i)
                 x = x_lo + (1.0 - x_lo) * _locate(
-                    p, sig, s, y, K, h, sig_h, sig_v, t, piece, exceeded, work, gbuf, i, g_lo, g1[i], x_lo
+                    p, sig, s, y, K, h, loc, t, exceeded, work, gbuf, i, g_lo, g1[i], x_lo
                 )
             if x < x_first:
                 x_first, first = x, i
@@ -334,11 +341,15 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                 K[0, j] = K[6, j]
             h = h * min(5.0, max(0.2, 0.9 * err ** (-0.2))) if err > 0 else 5.0 * h
             if t >= t_stop and t < t_end:
-                # Jump of the floor motion: the regime may change here.
+                # A breakpoint of the floor motion: a sample time of a record (continuous) or a
+                # jump (pulse start/end), where the regime may change.
                 ib += 1
-                t_stop_next = min(breakpoints[ib], t_end) if ib < nb else t_end
-                piece_next = t + 0.5 * (t_stop_next - t)
-                a, av = _ground(sig_h, sig_v, t, piece_next)
+                t_stop = min(breakpoints[ib], t_end) if ib < nb else t_end
+                _localise(sig_h, sig_v, t + 0.5 * (t_stop - t), loc_next)
+                a, av = _ground(loc_next, t)
+                a_old, av_old = _ground(loc, t)
+                for j in range(2 * LOCAL_SIZE):
+                    loc[j] = loc_next[j]
                 sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
                 if not ok:
                     indeterminate += 1
@@ -351,13 +362,15 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                         events[n_ev, 4:8] = np.array([y[1], y[1], y[3], y[3]])
                         events[n_ev, 8:] = 0.0
                         n_ev += 1
+                jump = abs(a - a_old) + abs(av - av_old) > 1e-12 * (abs(a) + abs(av) + p[G])
+                if jump or sig2 != sig or s2 != s:
+                    fresh = True
                 sig, s = sig2, s2
-                fresh = True
         else:
             # Event: state at the event by a direct (5th-order) step, not the interpolant.
             te = t + x_first * h
             Ke[0, :] = K[0, :]
-            _step(t, y, te - t, Ke, work, ye, args)
+            _step(t, y, te - t, Ke, work, ye, p, sig, s, loc)
             for j in range(N_STATE):
                 y[j] = ye[j]
             t = te
@@ -372,7 +385,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                 y_out[n_out, :] = y[:4]
                 r_out[n_out] = regime_before
                 n_out += 1
-            a, av = _ground(sig_h, sig_v, t, piece)
+            a, av = _ground(loc, t)
             if first == FALL:
                 kind = EV_FALL
                 summ[S_OVERTURN_TIME] = t
@@ -456,7 +469,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
         # Checks at the new point: extremes, energy balance, the model's assumptions.
         peak_theta = max(peak_theta, abs(y[2]))
         peak_u = max(peak_u, abs(y[0]))
-        a, av = _ground(sig_h, sig_v, t, piece)
+        a, av = _ground(loc, t)
         udd, thdd, ok = accelerations(p, sig, s, y[1], y[2], y[3], a, av)
         if not ok:
             status = STATUS_SINGULAR
