@@ -76,6 +76,60 @@ def _breakpoints(motion: AbstractMotion, t_end: float) -> np.ndarray:
     return np.unique(bp[(bp > 0.0) & (bp < t_end)])
 
 
+def prepare(
+    system: System,
+    motion: AbstractMotion,
+    *,
+    duration: float | None = None,
+    options: Options = Options(),
+    initial_rotation: float = 0.0,
+    initial_angular_velocity: float = 0.0,
+    initial_sliding_velocity: float = 0.0,
+    save: bool = True,
+) -> tuple[np.ndarray, tuple]:
+    """Validate the inputs and pack them for the compiled solver: (parameter vector, arguments
+    of :func:`rocking.solver.compiled.integrate`). Batch runs call this and the solver directly."""
+    if not isinstance(system, System):
+        raise TypeError(f"system must be a rocking.System, got {type(system).__name__}")
+    if not isinstance(motion, AbstractMotion):
+        raise TypeError(f"motion must be a floor motion, got {type(motion).__name__}")
+    t_end = motion.duration if duration is None else float(duration)
+    if not math.isfinite(t_end) or t_end <= 0:
+        raise ValueError(f"simulation.duration must be a positive number, got {duration!r}")
+    if abs(initial_rotation) >= 0.5 * math.pi:
+        raise ValueError(f"initial_rotation must satisfy |θ0| < π/2, got {initial_rotation!r}")
+    p = pack(
+        system,
+        gravity=options.gravity,
+        normal_force=options.normal_force,
+        impact=options.impact,
+        rest_velocity=options.rest_velocity,
+    )
+    save_dt = options.save_dt
+    if save_dt is None:
+        dt = getattr(motion, "dt", None)
+        save_dt = float(dt) if dt else 0.01
+    y0 = np.zeros(N_STATE)
+    y0[1], y0[2], y0[3] = initial_sliding_velocity, initial_rotation, initial_angular_velocity
+    sig_h, sig_v = motion.signal(), motion.vertical_signal()
+    args = (
+        p,
+        (sig_h.kind, sig_h.params, sig_h.time, sig_h.values),
+        (sig_v.kind, sig_v.params, sig_v.time, sig_v.values),
+        _breakpoints(motion, t_end),
+        0.0,
+        t_end,
+        y0,
+        options.rtol,
+        options.atol,
+        options.max_step,
+        save_dt,
+        save,
+        int(options.max_events),
+    )
+    return p, args
+
+
 def simulate(
     system: System,
     motion: AbstractMotion,
@@ -121,44 +175,13 @@ def simulate(
     >>> r.summary()["overturned"]
     True
     """
-    if not isinstance(system, System):
-        raise TypeError(f"system must be a rocking.System, got {type(system).__name__}")
-    if not isinstance(motion, AbstractMotion):
-        raise TypeError(f"motion must be a floor motion, got {type(motion).__name__}")
-    t_end = motion.duration if duration is None else float(duration)
-    if not math.isfinite(t_end) or t_end <= 0:
-        raise ValueError(f"simulation.duration must be a positive number, got {duration!r}")
-    if abs(initial_rotation) >= 0.5 * math.pi:
-        raise ValueError(f"initial_rotation must satisfy |θ0| < π/2, got {initial_rotation!r}")
-    p = pack(
-        system,
-        gravity=options.gravity,
-        normal_force=options.normal_force,
-        impact=options.impact,
-        rest_velocity=options.rest_velocity,
+    p, args = prepare(
+        system, motion, duration=duration, options=options, initial_rotation=initial_rotation,
+        initial_angular_velocity=initial_angular_velocity, initial_sliding_velocity=initial_sliding_velocity,
+        save=save,
     )
-    save_dt = options.save_dt
-    if save_dt is None:
-        dt = getattr(motion, "dt", None)
-        save_dt = float(dt) if dt else 0.01
-    y0 = np.zeros(N_STATE)
-    y0[1], y0[2], y0[3] = initial_sliding_velocity, initial_rotation, initial_angular_velocity
-    sig_h, sig_v = motion.signal(), motion.vertical_signal()
-    summary, t, y, regime, events = integrate(
-        p,
-        (sig_h.kind, sig_h.params, sig_h.time, sig_h.values),
-        (sig_v.kind, sig_v.params, sig_v.time, sig_v.values),
-        _breakpoints(motion, t_end),
-        0.0,
-        t_end,
-        y0,
-        options.rtol,
-        options.atol,
-        options.max_step,
-        save_dt,
-        save,
-        int(options.max_events),
-    )
+    summary, t, y, regime, events = integrate(*args)
+    t_end = args[5]
     response = Response(
         system=system,
         motion=motion,

@@ -43,6 +43,35 @@ def _opt(x: float) -> float | None:
     return None if math.isnan(x) else float(x)
 
 
+SUMMARY_FIELDS = (
+    "overturned", "overturn_time", "exceeded_alpha_time", "peak_rotation", "peak_rotation_over_alpha",
+    "peak_sliding", "residual_sliding", "impacts", "first_rocking_time", "first_sliding_time",
+    "required_top_friction", "impact_floor_friction_needed", "energy_balance_error", "status", "end_time",
+)
+
+
+def summary_values(raw: np.ndarray, alpha: float) -> dict[str, Any]:
+    """The summary dictionary (keys ``SUMMARY_FIELDS``) from the solver's raw summary vector."""
+    status = _STATUS[int(raw[C.S_STATUS])][0]
+    return {
+        "overturned": status == "overturned",
+        "overturn_time": _opt(raw[C.S_OVERTURN_TIME]),
+        "exceeded_alpha_time": _opt(raw[C.S_EXCEED_TIME]),
+        "peak_rotation": float(raw[C.S_PEAK_ROTATION]),
+        "peak_rotation_over_alpha": float(raw[C.S_PEAK_ROTATION] / alpha),
+        "peak_sliding": float(raw[C.S_PEAK_SLIDING]),
+        "residual_sliding": float(raw[C.S_RESIDUAL_SLIDING]),
+        "impacts": int(raw[C.S_IMPACTS]),
+        "first_rocking_time": _opt(raw[C.S_FIRST_ROCK]),
+        "first_sliding_time": _opt(raw[C.S_FIRST_SLIDE]),
+        "required_top_friction": float(raw[C.S_TOP_RATIO]),
+        "impact_floor_friction_needed": float(raw[C.S_IMPACT_FLOOR_RATIO]),
+        "energy_balance_error": float(raw[C.S_BALANCE] / raw[C.S_ENERGY_SCALE]),
+        "status": status,
+        "end_time": float(raw[C.S_T_END]),
+    }
+
+
 @dataclass(frozen=True, kw_only=True, eq=False)
 class Response:
     """The result of :func:`rocking.simulate`.
@@ -167,25 +196,9 @@ class Response:
 
     def summary(self) -> dict[str, Any]:
         """The summary contract of ``rocking run`` (SI units, radians, null when it did not happen)."""
-        s = self.raw_summary
-        return {
-            "overturned": self.overturned,
-            "overturn_time": self.overturn_time,
-            "exceeded_alpha_time": self.exceeded_alpha_time,
-            "peak_rotation": float(s[C.S_PEAK_ROTATION]),
-            "peak_rotation_over_alpha": float(s[C.S_PEAK_ROTATION] / self.alpha),
-            "peak_sliding": float(s[C.S_PEAK_SLIDING]),
-            "residual_sliding": float(s[C.S_RESIDUAL_SLIDING]),
-            "impacts": int(s[C.S_IMPACTS]),
-            "first_rocking_time": _opt(s[C.S_FIRST_ROCK]),
-            "first_sliding_time": _opt(s[C.S_FIRST_SLIDE]),
-            "required_top_friction": float(s[C.S_TOP_RATIO]),
-            "impact_floor_friction_needed": float(s[C.S_IMPACT_FLOOR_RATIO]),
-            "energy_balance_error": float(s[C.S_BALANCE] / s[C.S_ENERGY_SCALE]),
-            "status": self.status,
-            "end_time": float(s[C.S_T_END]),
-            "warnings": self.warnings,
-        }
+        out = summary_values(self.raw_summary, self.alpha)
+        out["warnings"] = self.warnings
+        return out
 
     # -- key point kinematics (paper Eqs. 7–13) --------------------------------------------
     def key_point(self, x: float, y: float) -> dict[str, np.ndarray]:

@@ -1,0 +1,223 @@
+"""Many simulations at once: a list of cases or a grid sweep, in-process or on workers.
+
+Only summaries travel back (a few dozen numbers per run), so 100 000 runs fit in a few tens of
+MB. Workers follow SciPy's convention: ``workers=1`` runs in this process, an integer ``n > 1``
+uses ``n`` local processes (the default is all cores), and any object with a ``map(fn, iterable)``
+method (e.g. :class:`rocking.analyses.executors.DaskExecutor`) distributes the chunks. Results do
+not depend on the workers: every run is the same deterministic computation.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+import math
+import os
+from collections.abc import Callable, Iterable, Sequence
+from concurrent.futures import ProcessPoolExecutor
+from typing import Any
+
+import numpy as np
+
+from ..excitation.base import AbstractMotion
+from ..models.bodies import System
+from ..results.response import SUMMARY_FIELDS, summary_values
+from ..simulation import Options, prepare
+from ..solver.compiled import N_SUMMARY, integrate
+
+Case = tuple[System, AbstractMotion]
+
+
+def run_raw(system: System, motion: AbstractMotion, options: Options, duration: float | None = None) -> np.ndarray:
+    """Raw summary vector of one run (no time series)."""
+    _, args = prepare(system, motion, duration=duration, options=options, save=False)
+    return integrate(*args)[0]
+
+
+def _run_chunk(payload) -> np.ndarray:
+    cases, options, duration = payload
+    out = np.empty((len(cases), N_SUMMARY))
+    for i, (system, motion) in enumerate(cases):
+        out[i] = run_raw(system, motion, options, duration)
+    return out
+
+
+def _chunks(cases: Sequence[Case], size: int) -> list[Sequence[Case]]:
+    return [cases[i : i + size] for i in range(0, len(cases), size)]
+
+
+def _default_workers() -> int:
+    return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1))
+
+
+def map_chunks(
+    fn: Callable[[Any], np.ndarray],
+    payloads: list[Any],
+    workers: int | Any | None,
+    progress: Callable[[int], None] | None = None,
+) -> list[np.ndarray]:
+    """Apply ``fn`` to every payload on the chosen workers, in order; ``progress(n_done_payloads)``."""
+    if workers is None:
+        workers = _default_workers()
+    results: list[np.ndarray] = []
+    if hasattr(workers, "map"):
+        iterator: Iterable[np.ndarray] = workers.map(fn, payloads)
+    elif int(workers) <= 1 or len(payloads) <= 1:
+        iterator = map(fn, payloads)
+    else:
+        pool = ProcessPoolExecutor(max_workers=int(workers))
+        iterator = pool.map(fn, payloads)
+    try:
+        for r in iterator:
+            results.append(r)
+            if progress is not None:
+                progress(len(results))
+    finally:
+        if not hasattr(workers, "map") and isinstance(workers, int) and workers > 1 and len(payloads) > 1:
+            pool.shutdown()
+    return results
+
+
+def run_cases(
+    cases: Sequence[Case],
+    *,
+    options: Options = Options(),
+    duration: float | None = None,
+    workers: int | Any | None = None,
+    chunk_size: int | None = None,
+    progress: Callable[[int, int], None] | None = None,
+):
+    """Run every (system, motion) case and return an ``xarray.Dataset`` of summaries along ``case``.
+
+    Parameters
+    ----------
+    cases : sequence of (System, motion)
+    options : Options
+        Shared by all runs.
+    duration : float, optional
+        Simulated time (s); default each motion's duration.
+    workers : int or executor, optional
+        1: in this process; n > 1: local processes (default: all cores); or an object with ``map``.
+    chunk_size : int, optional
+        Runs per task (default: enough for ~4 tasks per worker).
+    progress : callable, optional
+        ``progress(done, total)`` after each chunk.
+
+    Examples
+    --------
+    >>> import rocking as rk
+    >>> from rocking.analyses.batch import run_cases
+    >>> st = rk.Statue(width=1.0, height=4.0, mass=1.0)
+    >>> ds = run_cases([(rk.System(statue=st), rk.Harmonic(amplitude=a, frequency=1.2, cycles=3)) for a in (2.0, 8.0)], workers=1)
+    >>> ds.overturned.values.tolist(), int(ds.impacts[0])
+    ([False, True], 0)
+    """
+    cases = list(cases)
+    n = len(cases)
+    if n == 0:
+        raise ValueError("run_cases needs at least one case")
+    nw = 1 if workers is None and n < 64 else workers
+    if chunk_size is None:
+        per = _default_workers() if nw is None else (int(nw) if not hasattr(nw, "map") else 8)
+        chunk_size = max(1, min(2000, math.ceil(n / (4 * max(1, per)))))
+    chunks = _chunks(cases, chunk_size)
+    payloads = [(c, options, duration) for c in chunks]
+    done_runs = np.cumsum([len(c) for c in chunks])
+    report = (lambda k: progress(int(done_runs[k - 1]), n)) if progress else None
+    raw = np.concatenate(map_chunks(_run_chunk, payloads, nw, report), axis=0)
+    alphas = np.array([system.statue.slenderness for system, _ in cases])
+    return summaries_dataset(raw, alphas, dims=("case",), shape=(n,))
+
+
+def summaries_dataset(raw: np.ndarray, alphas: np.ndarray, *, dims: tuple[str, ...], shape: tuple[int, ...], coords=None):
+    """An ``xarray.Dataset`` with one variable per summary field, shaped ``shape`` along ``dims``."""
+    import xarray as xr
+
+    rows = [summary_values(r, a) for r, a in zip(raw, alphas)]
+    data = {}
+    for key in SUMMARY_FIELDS:
+        values = [row[key] for row in rows]
+        if key in ("overturned",):
+            arr = np.array(values, dtype=bool)
+        elif key == "impacts":
+            arr = np.array(values, dtype=np.int64)
+        elif key == "status":
+            arr = np.array(values, dtype=str)
+        else:
+            arr = np.array([np.nan if v is None else v for v in values], dtype=float)
+        data[key] = (dims, arr.reshape(shape))
+    ds = xr.Dataset(data, coords=coords or {})
+    units = {"overturn_time": "s", "exceeded_alpha_time": "s", "peak_rotation": "rad", "peak_sliding": "m",
+             "residual_sliding": "m", "first_rocking_time": "s", "first_sliding_time": "s", "end_time": "s"}
+    for key, unit in units.items():
+        ds[key].attrs["units"] = unit
+    return ds
+
+
+# -- sweeps over named parameters --------------------------------------------------------------
+def replace_at(obj: Any, path: str, value: Any) -> Any:
+    """A copy of a nested frozen dataclass with the field at dotted ``path`` replaced
+    (e.g. ``"pedestal.friction.static"``)."""
+    head, _, rest = path.partition(".")
+    if not dataclasses.is_dataclass(obj) or head not in {f.name for f in dataclasses.fields(obj)}:
+        raise ValueError(f"unknown sweep axis {path!r} on {type(obj).__name__}")
+    if not rest:
+        return dataclasses.replace(obj, **{head: value})
+    return dataclasses.replace(obj, **{head: replace_at(getattr(obj, head), rest, value)})
+
+
+def _apply(system: System, motion: AbstractMotion, axis: str, value: float) -> Case:
+    if axis == "pga":
+        if hasattr(motion, "scaled"):
+            return system, motion.scaled(pga=value)
+        return system, replace_at(motion, "amplitude", math.copysign(value, getattr(motion, "amplitude", 1.0) or 1.0))
+    if axis == "scale":
+        return system, motion.scaled(factor=value)
+    if axis.startswith("motion."):
+        return system, replace_at(motion, axis[len("motion."):], value)
+    if axis == "pedestal.friction.ratio":  # μk/μs
+        f = system.pedestal.friction
+        return replace_at(system, "pedestal.friction.kinetic", value * f.static), motion
+    return replace_at(system, axis, value), motion
+
+
+def sweep(
+    system: System,
+    motion: AbstractMotion,
+    axes: dict[str, Sequence[float]],
+    *,
+    options: Options = Options(),
+    duration: float | None = None,
+    workers: int | Any | None = None,
+    progress: Callable[[int, int], None] | None = None,
+):
+    """Run the Cartesian product of ``axes`` (dotted paths into the system, ``motion.<field>``,
+    ``"pga"`` or ``"scale"``) and return a Dataset with one dimension per axis.
+
+    Examples
+    --------
+    >>> import rocking as rk
+    >>> from rocking.analyses.batch import sweep
+    >>> st = rk.Statue(width=1.0, height=4.0, mass=1.0)
+    >>> ds = sweep(rk.System(statue=st), rk.Harmonic(amplitude=1.0, frequency=1.2, cycles=3),
+    ...            {"motion.amplitude": [2.0, 8.0], "statue.height": [4.0, 8.0]}, workers=1)
+    >>> ds.overturned.dims
+    ('motion.amplitude', 'statue.height')
+    """
+    names = list(axes)
+    grids = [np.asarray(axes[k], dtype=float) for k in names]
+    cases = []
+    for values in itertools.product(*grids):
+        sysm, mot = system, motion
+        for axis, value in zip(names, values):
+            sysm, mot = _apply(sysm, mot, axis, float(value))
+        cases.append((sysm, mot))
+    ds = run_cases(cases, options=options, duration=duration, workers=workers, progress=progress)
+    shape = tuple(len(g) for g in grids)
+    import xarray as xr
+
+    out = xr.Dataset(
+        {k: (names, ds[k].values.reshape(shape), ds[k].attrs) for k in ds.data_vars},
+        coords={k: g for k, g in zip(names, grids)},
+    )
+    return out
