@@ -155,15 +155,16 @@ def summaries_dataset(raw: np.ndarray, alphas: np.ndarray, *, dims: tuple[str, .
 
 
 # -- sweeps over named parameters --------------------------------------------------------------
-def replace_at(obj: Any, path: str, value: Any) -> Any:
+def replace_at(obj: Any, path: str, value: Any, _full: str | None = None) -> Any:
     """A copy of a nested frozen dataclass with the field at dotted ``path`` replaced
     (e.g. ``"pedestal.friction.static"``)."""
+    full = path if _full is None else _full
     head, _, rest = path.partition(".")
     if not dataclasses.is_dataclass(obj) or head not in {f.name for f in dataclasses.fields(obj)}:
-        raise ValueError(f"unknown sweep axis {path!r} on {type(obj).__name__}")
+        raise ValueError(f"unknown sweep axis {full!r}: {type(obj).__name__} has no field {head!r}")
     if not rest:
         return dataclasses.replace(obj, **{head: value})
-    return dataclasses.replace(obj, **{head: replace_at(getattr(obj, head), rest, value)})
+    return dataclasses.replace(obj, **{head: replace_at(getattr(obj, head), rest, value, full)})
 
 
 def _apply(system: System, motion: AbstractMotion, axis: str, value: float) -> Case:
