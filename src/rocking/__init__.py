@@ -18,9 +18,10 @@ from .models.bodies import Pedestal, Statue, System
 from .models.regimes import EventKind, Regime
 from .results.response import Response
 from .simulation import Options, SimulationError, simulate
+from .runner import run, run_response
 
 __all__ = [
     "g", "Friction", "Harmonic", "CosinePulse", "Ramp", "RectanglePulse", "RickerPulse", "SinePulse",
-    "Pedestal", "Statue", "System", "EventKind", "Regime", "Response", "Options", "SimulationError", "simulate",
+    "Pedestal", "Statue", "System", "EventKind", "Regime", "Response", "Options", "SimulationError", "simulate", "run", "run_response",
 ]
 __version__ = "0.1.0"

@@ -103,6 +103,11 @@ class ConfigError(ValueError):
         text = " ".join(text.split("\n"))
         super().__init__(f"{source}: {text}" if source else text)
 
+    def __reduce__(self):
+        # the default would call ConfigError(message) and lose the fields (dask workers
+        # send exceptions back pickled)
+        return (type(self), (self.problems, self.source))
+
 
 # ------------------------------------------------------------------------------ models
 Positive = Annotated[float, Field(gt=0)]

@@ -82,7 +82,8 @@ def _write_netcdf(response: Any, path: Path, config: Any = None) -> None:
     ds = response.to_xarray()
     if config is not None:
         # the full input next to the result, so a .nc file explains itself
-        ds.attrs["config"] = json.dumps(jsonable(config.model_dump(mode="json")))
+        data = config.model_dump(mode="json") if hasattr(config, "model_dump") else config
+        ds.attrs["config"] = json.dumps(jsonable(data))
         if getattr(config, "source", None):
             ds.attrs["config_file"] = str(config.source)
     ds.to_netcdf(path, engine="h5netcdf")
@@ -155,7 +156,8 @@ def plot_response(response: Any, path: str | os.PathLike[str], *, title: str | N
             ax.axvline(response.overturn_time, color="tab:red", ls="--", lw=1.0,
                        label="overturned" if ax is ax_th else None)
     ax_th.set_ylabel("θ/α")
-    ax_th.legend(loc="upper right", fontsize="small", ncol=3, framealpha=0.8)
+    if ax_th.get_legend_handles_labels()[0]:  # at rest all along: nothing to explain
+        ax_th.legend(loc="upper right", fontsize="small", ncol=3, framealpha=0.8)
 
     ax_u.plot(t, 1e3 * np.asarray(response.u), color="k", lw=0.9)
     ax_u.set_ylabel("u (mm)")
@@ -190,7 +192,7 @@ def write_outputs(
     out_dir : path-like
         Target folder; created (with its parents) if missing. Files of the same names
         are replaced, other files are left alone.
-    config : Config, optional
+    config : Config or mapping, optional
         Stored as JSON in the NetCDF attributes (``config``, ``config_file``) and
         used for the figure title.
 
@@ -201,6 +203,8 @@ def write_outputs(
 
     Raises
     ------
+    ValueError
+        If the response was simulated with ``save=False`` (no time series).
     NotADirectoryError
         If ``out_dir`` exists and is not a folder.
     OSError, ValueError
@@ -213,6 +217,8 @@ def write_outputs(
     same file system, so the final moves are ``os.replace`` renames) and moved in
     only after all of them succeeded.
     """
+    if np.asarray(response.t).size == 0:
+        raise ValueError("the response has no time series: simulate with save=True")
     out = Path(out_dir)
     if out.exists() and not out.is_dir():
         raise NotADirectoryError(f"{out}: exists and is not a directory")
@@ -238,10 +244,10 @@ def write_outputs(
             created.append(out)
         _move_in(tmp, out)
     except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)  # first: it sits in a folder we may remove
         _remove_empty(created)
         raise
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+    shutil.rmtree(tmp, ignore_errors=True)
     return {name: out / name for name in OUTPUT_FILES}
 
 
