@@ -58,6 +58,26 @@ def evaluate_guards(p, sig, s, y, a, av, exceeded, out):
 
 
 @njit(cache=True)
+def track_threshold_guards(p, sig, s, y, a, av, udd, thdd, gmin):
+    """Lower ``gmin`` to the values of the guards that follow the floor motion (friction cone,
+    rocking threshold, sliding velocity) at an interior state of a step, with its accelerations
+    already known. Such a guard can dip below zero and come back within one step; the end
+    points alone would miss it (scipy#9228)."""
+    if sig == 0:
+        if p[CAN_SLIDE] > 0.5:
+            f, n = floor_forces(p, s, y[2], y[3], a, av, udd, thdd)
+            cap = p[MU_S] * friction_normal(p, n, av)
+            gmin[SLIP_TO_NEGATIVE] = min(gmin[SLIP_TO_NEGATIVE], cap - f)
+            gmin[SLIP_TO_POSITIVE] = min(gmin[SLIP_TO_POSITIVE], cap + f)
+    else:
+        gmin[STOP] = min(gmin[STOP], sig * y[1])
+    if s == 0:
+        threshold = (p[G] + av) * math.tan(p[ALPHA])
+        gmin[ROCK_TO_NEGATIVE] = min(gmin[ROCK_TO_NEGATIVE], threshold - (a + udd))
+        gmin[ROCK_TO_POSITIVE] = min(gmin[ROCK_TO_POSITIVE], threshold + (a + udd))
+
+
+@njit(cache=True)
 def _sign(x):
     return 1 if x > 0.0 else -1
 

@@ -14,7 +14,8 @@ from pathlib import Path
 _PKG = Path(__file__).resolve().parent.parent
 _CORE = [
     "models/dynamics.py", "models/modes.py", "models/parameters.py", "contact/impact.py",
-    "excitation/signal.py", "excitation/base.py", "integrators/dopri5.py", "solver/compiled.py",
+    "excitation/signal.py", "excitation/base.py", "integrators/dopri5.py", "integrators/dop853.py",
+    "solver/compiled.py",
 ]
 
 

@@ -15,7 +15,7 @@ from numba import njit
 
 from ..contact.impact import friction_ratio, impact_coulomb, impact_paper
 from ..excitation.signal import LOCAL_SIZE, local_value, localise
-from ..integrators import dopri5
+from ..integrators import dop853
 from ..models.dynamics import (
     accelerations,
     floor_forces,
@@ -36,6 +36,7 @@ from ..models.modes import (
     STOP,
     evaluate_guards,
     select_regime,
+    track_threshold_guards,
 )
 from ..models.parameters import ALPHA, B, CAN_SLIDE, ETA, G, H, I_O, IMPACT_COULOMB, M, M2, MU_K, MU_S, MU_TOP, REST_VEL
 
@@ -84,13 +85,28 @@ def rhs(t, y, p, sig, s, loc, out):
 
 
 @njit(cache=True)
-def _step(t, y, h, K, work, y_new, p, sig, s, loc):
-    """One Dormand–Prince step; K[0] = rhs(t, y) on entry, K[6] = rhs(t + h, y_new) on exit."""
-    for stage in range(1, 6):
-        dopri5.stage_input(y, K, h, stage, work)
-        rhs(t + dopri5.C[stage] * h, work, p, sig, s, loc, K[stage])
-    dopri5.advance(y, K, h, y_new)
-    rhs(t + h, y_new, p, sig, s, loc, K[6])
+def _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin):
+    """One DOP853 step; K[0] = rhs(t, y) on entry, K[FSAL] = rhs(t + h, y_new) on exit.
+    ``gmin`` receives the smallest values of the threshold guards at the interior stages."""
+    for i in range(N_GUARDS):
+        gmin[i] = np.inf
+    for stage in range(1, dop853.N_STAGES):
+        dop853.stage_input(y, K, h, stage, work)
+        ts = t + dop853.C[stage] * h
+        rhs(ts, work, p, sig, s, loc, K[stage])
+        a, av = _ground(loc, ts)
+        track_threshold_guards(p, sig, s, work, a, av, K[stage, 1], K[stage, 3], gmin)
+    dop853.advance(y, K, h, y_new)
+    rhs(t + h, y_new, p, sig, s, loc, K[dop853.FSAL])
+
+
+@njit(cache=True)
+def _prepare_dense(t, y, y_new, h, K, work, F, p, sig, s, loc):
+    """7th-order dense output of the accepted step (three more right-hand sides) into F."""
+    for j in range(dop853.N_EXTRA):
+        dop853.extra_stage_input(y, K, h, j, work)
+        rhs(t + dop853.C_EXTRA[j] * h, work, p, sig, s, loc, K[dop853.FSAL + 1 + j])
+    dop853.prepare_dense(y, y_new, K, h, F)
 
 
 @njit(cache=True)
@@ -99,26 +115,25 @@ def _regime(sig, s):
 
 
 @njit(cache=True)
-def _guard_at(p, sig, s, y0, K, h, x, loc, t0, exceeded, work, gbuf, index):
-    dopri5.dense(y0, K, h, x, work)
+def _guard_at(p, sig, s, y0, F, h, x, loc, t0, exceeded, work, gbuf, index):
+    dop853.dense(y0, F, x, work)
     a, av = _ground(loc, t0 + x * h)
     evaluate_guards(p, sig, s, work, a, av, exceeded, gbuf)
     return gbuf[index]
 
 
 @njit(cache=True)
-def _locate(p, sig, s, y0, K, h, loc, t0, exceeded, work, gbuf, index, g_lo, g_hi, x0=0.0):
-    """Where guard ``index`` first reaches zero in [x0, 1] of the step, as a fraction of
-    [x0, 1] (Illinois method on the dense output; g(x0) = g_lo > 0 ≥ g_hi = g(1))."""
-    lo, hi = 0.0, 1.0
+def _locate(p, sig, s, y0, F, h, loc, t0, exceeded, work, gbuf, index, g_lo, g_hi, x0, x1):
+    """Fraction of the step where guard ``index`` first reaches zero in [x0, x1], given
+    g(x0) = g_lo > 0 ≥ g_hi = g(x1) (Illinois method on the dense output)."""
+    lo, hi = x0, x1
     flo, fhi = g_lo, g_hi
     side = 0
-    width = (1.0 - x0) * h
     for _ in range(200):
         x = (lo * fhi - hi * flo) / (fhi - flo)
         if not (lo < x < hi):
             x = 0.5 * (lo + hi)
-        fx = _guard_at(p, sig, s, y0, K, h, x0 + (1.0 - x0) * x, loc, t0, exceeded, work, gbuf, index)
+        fx = _guard_at(p, sig, s, y0, F, h, x, loc, t0, exceeded, work, gbuf, index)
         if fx <= 0.0:
             hi, fhi = x, fx
             if side == -1:
@@ -129,38 +144,78 @@ def _locate(p, sig, s, y0, K, h, loc, t0, exceeded, work, gbuf, index, g_lo, g_h
             if side == 1:
                 fhi *= 0.5
             side = 1
-        if (hi - lo) * width <= 1e-15 * max(1.0, abs(t0)) + 1e-300:
+        if (hi - lo) * h <= 1e-15 * max(1.0, abs(t0)) + 1e-300:
             break
     return hi
 
 
 @njit(cache=True)
-def _positive_inside(p, sig, s, y0, K, h, loc, t0, exceeded, work, gbuf, index):
+def _minimum(p, sig, s, y0, F, h, loc, t0, exceeded, work, gbuf, index):
+    """Golden-section search for the minimum of guard ``index`` over the step; returns its
+    position if the minimum is ≤ 0, else −1 (a grazing dip between the 64 samples)."""
+    ratio = 0.6180339887498949
+    lo, hi = 0.0, 1.0
+    x1 = hi - ratio * (hi - lo)
+    x2 = lo + ratio * (hi - lo)
+    f1 = _guard_at(p, sig, s, y0, F, h, x1, loc, t0, exceeded, work, gbuf, index)
+    f2 = _guard_at(p, sig, s, y0, F, h, x2, loc, t0, exceeded, work, gbuf, index)
+    for _ in range(60):
+        if min(f1, f2) <= 0.0:
+            break
+        if f1 < f2:
+            hi, x2, f2 = x2, x1, f1
+            x1 = hi - ratio * (hi - lo)
+            f1 = _guard_at(p, sig, s, y0, F, h, x1, loc, t0, exceeded, work, gbuf, index)
+        else:
+            lo, x1, f1 = x1, x2, f2
+            x2 = lo + ratio * (hi - lo)
+            f2 = _guard_at(p, sig, s, y0, F, h, x2, loc, t0, exceeded, work, gbuf, index)
+        if (hi - lo) * h < 1e-12:
+            break
+    if f1 <= 0.0:
+        return x1
+    if f2 <= 0.0:
+        return x2
+    return -1.0
+
+
+@njit(cache=True)
+def _first_nonpositive(p, sig, s, y0, F, h, loc, t0, exceeded, work, gbuf, index):
+    """The first of 64 points of the step where guard ``index`` is ≤ 0, or −1."""
+    for k in range(1, 64):
+        x = k / 64.0
+        if _guard_at(p, sig, s, y0, F, h, x, loc, t0, exceeded, work, gbuf, index) <= 0.0:
+            return x
+    return -1.0
+
+
+@njit(cache=True)
+def _positive_inside(p, sig, s, y0, F, h, loc, t0, exceeded, work, gbuf, index):
     """A fraction x of the step where guard ``index`` is positive, or −1. For the impact guard
     the best candidate is the turning point of θ (θ̇ = 0); otherwise 32 samples are tried."""
     if index == IMPACT:
-        dopri5.dense(y0, K, h, 1.0, work)
+        dop853.dense(y0, F, 1.0, work)
         if (y0[3] > 0.0) != (work[3] > 0.0):
-            x = _theta_dot_root(y0, K, h, work)
-            if _guard_at(p, sig, s, y0, K, h, x, loc, t0, exceeded, work, gbuf, index) > 0.0:
+            x = _theta_dot_root(y0, F, work)
+            if _guard_at(p, sig, s, y0, F, h, x, loc, t0, exceeded, work, gbuf, index) > 0.0:
                 return x
     x_best = -1.0
     for k in range(1, 32):
         x = k / 32.0
-        if _guard_at(p, sig, s, y0, K, h, x, loc, t0, exceeded, work, gbuf, index) > 0.0:
+        if _guard_at(p, sig, s, y0, F, h, x, loc, t0, exceeded, work, gbuf, index) > 0.0:
             x_best = x
     return x_best
 
 
 @njit(cache=True)
-def _theta_dot_root(y0, K, h, work):
+def _theta_dot_root(y0, F, work):
     """Fraction of the step where θ̇ changes sign (bisection on the dense output)."""
-    dopri5.dense(y0, K, h, 0.0, work)
+    dop853.dense(y0, F, 0.0, work)
     f_lo = work[3]
     lo, hi = 0.0, 1.0
     for _ in range(60):
         mid = 0.5 * (lo + hi)
-        dopri5.dense(y0, K, h, mid, work)
+        dop853.dense(y0, F, mid, work)
         if (work[3] > 0.0) == (f_lo > 0.0):
             lo = mid
         else:
@@ -181,11 +236,20 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
     y_new = np.empty(N_STATE)
     work = np.empty(N_STATE)
     ye = np.empty(N_STATE)
-    K = np.empty((7, N_STATE))
-    Ke = np.empty((7, N_STATE))
+    K = np.empty((dop853.N_K, N_STATE))
+    Ke = np.empty((dop853.N_K, N_STATE))
+    F = np.empty((dop853.INTERPOLATOR_POWER, N_STATE))
     g0 = np.empty(N_GUARDS)
     g1 = np.empty(N_GUARDS)
     gbuf = np.empty(N_GUARDS)
+    gmin = np.empty(N_GUARDS)
+    # An interior minimum of a threshold guard is searched for a sign change only when it comes
+    # this close to zero (10 % of the guard's natural scale): the cost stays with grazing steps.
+    near = np.full(N_GUARDS, -np.inf)
+    if p[CAN_SLIDE] > 0.5:
+        near[0] = near[1] = 0.1 * p[MU_S] * p[M] * p[G]
+        near[STOP] = 1e-3
+    near[3] = near[4] = 0.1 * p[G] * math.tan(p[ALPHA])
     armed = np.ones(N_GUARDS, dtype=np.bool_)
 
     n_grid = int(math.floor((t_end - t0) / save_dt + 1e-9)) + 1 if save else 0
@@ -253,14 +317,14 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
         # Avoid a sliver of a step before a breakpoint.
         if t_stop - (t + h) < 1e-3 * h:
             h = t_stop - t
-        _step(t, y, h, K, work, y_new, p, sig, s, loc)
-        err = dopri5.error_norm(y, y_new, K, h, rtol, atol, 4)
+        _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin)
+        err = dop853.error_norm(y, y_new, K, h, rtol, atol, 4)
         if not (err <= 1.0):
             rejected += 1
             if not math.isfinite(err):
                 h *= 0.1
             else:
-                h *= max(0.2, 0.9 * err ** (-0.2))
+                h *= max(0.2, 0.9 * err ** (-dop853.ERROR_EXPONENT))
             if h < 1e-14 * max(1.0, abs(t)):
                 status = STATUS_STEP_FAILED
                 break
@@ -273,17 +337,39 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
         # Guards at the end of the step (same piece of the motion as the step).
         a1, av1 = _ground(loc, t1)
         evaluate_guards(p, sig, s, y_new, a1, av1, exceeded, g1)
+        # The dense output costs three more right-hand sides: build it only when this step
+        # holds an event candidate, a turning point of θ or a saved sample.
+        need_dense = s != 0 and (y[3] > 0.0) != (y_new[3] > 0.0)
+        for i in range(N_GUARDS):
+            if g1[i] <= 0.0 or (armed[i] and g0[i] > 0.0 and gmin[i] < min(g0[i], g1[i]) and gmin[i] < near[i]):
+                need_dense = True
+        if save and next_grid < n_grid and t0 + next_grid * save_dt <= t1 + 1e-12 * h:
+            need_dense = True
+        if need_dense:
+            _prepare_dense(t, y, y_new, h, K, work, F, p, sig, s, loc)
         first = -1
         x_first = 2.0
         for i in range(N_GUARDS):
             if g1[i] > 0.0:
+                if armed[i] and g0[i] > 0.0 and gmin[i] < min(g0[i], g1[i]) and gmin[i] < near[i]:
+                    # The guard has an interior minimum (seen at a stage): it may dip below
+                    # zero and come back inside this step. Find the minimum on the dense output
+                    # and the first crossing before it.
+                    x_neg = _first_nonpositive(p, sig, s, y, F, h, loc, t, exceeded, work, gbuf, i)
+                    if x_neg < 0.0:
+                        x_neg = _minimum(p, sig, s, y, F, h, loc, t, exceeded, work, gbuf, i)
+                    if x_neg > 0.0:
+                        g_neg = _guard_at(p, sig, s, y, F, h, x_neg, loc, t, exceeded, work, gbuf, i)
+                        x = _locate(p, sig, s, y, F, h, loc, t, exceeded, work, gbuf, i, g0[i], g_neg, 0.0, x_neg)
+                        if x < x_first:
+                            x_first, first = x, i
                 continue
             if armed[i] and g0[i] > 0.0:
-                x = _locate(p, sig, s, y, K, h, loc, t, exceeded, work, gbuf, i, g0[i], g1[i])
+                x = _locate(p, sig, s, y, F, h, loc, t, exceeded, work, gbuf, i, g0[i], g1[i], 0.0, 1.0)
             else:
                 # A guard that started on zero (just after an event) may have gone positive and
                 # back within this step: find an interior point where it is positive.
-                x_lo = _positive_inside(p, sig, s, y, K, h, loc, t, exceeded, work, gbuf, i)
+                x_lo = _positive_inside(p, sig, s, y, F, h, loc, t, exceeded, work, gbuf, i)
                 if x_lo < 0.0:
                     # A friction or rocking threshold exactly tied when the regime was chosen
                     # (e.g. a pulse whose phase starts rocking at t = 0) and crossed right away:
@@ -292,10 +378,8 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                         if g1[i] < 0.0:
                             x_first, first = 0.0, i
                     continue
-                g_lo = _guard_at(p, sig, s, y, K, h, x_lo, loc, t, exceeded, work, gbuf, i)
-                x = x_lo + (1.0 - x_lo) * _locate(
-                    p, sig, s, y, K, h, loc, t, exceeded, work, gbuf, i, g_lo, g1[i], x_lo
-                )
+                g_lo = _guard_at(p, sig, s, y, F, h, x_lo, loc, t, exceeded, work, gbuf, i)
+                x = _locate(p, sig, s, y, F, h, loc, t, exceeded, work, gbuf, i, g_lo, g1[i], x_lo, 1.0)
             if x < x_first:
                 x_first, first = x, i
         x_end = x_first if first >= 0 else 1.0
@@ -307,12 +391,12 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                 summ[S_FIRST_SLIDE] = t
 
         # Peak rotation inside the step (θ̇ changes sign).
-        if s != 0:
-            dopri5.dense(y, K, h, x_end, work)
+        if s != 0 and need_dense:
+            dop853.dense(y, F, x_end, work)
             if (y[3] > 0.0) != (work[3] > 0.0):
-                xr = _theta_dot_root(y, K, h, work)
+                xr = _theta_dot_root(y, F, work)
                 if xr <= x_end:
-                    dopri5.dense(y, K, h, xr, work)
+                    dop853.dense(y, F, xr, work)
                     peak_theta = max(peak_theta, abs(work[2]))
 
         # Samples on the output grid up to the end of the (possibly shortened) step.
@@ -322,7 +406,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                 if tg > t + x_end * h + 1e-12 * h:
                     break
                 if tg >= t:
-                    dopri5.dense(y, K, h, (tg - t) / h, work)
+                    dop853.dense(y, F, (tg - t) / h, work)
                     t_out[n_out] = tg
                     y_out[n_out, :] = work[:4]
                     r_out[n_out] = _regime(sig, s)
@@ -338,8 +422,8 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                 if g1[i] > 0.0:
                     armed[i] = True
             for j in range(N_STATE):
-                K[0, j] = K[6, j]
-            h = h * min(5.0, max(0.2, 0.9 * err ** (-0.2))) if err > 0 else 5.0 * h
+                K[0, j] = K[dop853.FSAL, j]
+            h = h * min(10.0, max(0.2, 0.9 * err ** (-dop853.ERROR_EXPONENT))) if err > 0 else 10.0 * h
             if t >= t_stop and t < t_end:
                 # A breakpoint of the floor motion: a sample time of a record (continuous) or a
                 # jump (pulse start/end), where the regime may change.
@@ -370,7 +454,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
             # Event: state at the event by a direct (5th-order) step, not the interpolant.
             te = t + x_first * h
             Ke[0, :] = K[0, :]
-            _step(t, y, te - t, Ke, work, ye, p, sig, s, loc)
+            _step(t, y, te - t, Ke, work, ye, p, sig, s, loc, gbuf)
             for j in range(N_STATE):
                 y[j] = ye[j]
             t = te

@@ -63,6 +63,7 @@ import math
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
 
 from ..contact.impact import friction_ratio, impact_coulomb, impact_paper
 from ..excitation.base import (
@@ -76,7 +77,19 @@ from ..excitation.base import (
 )
 from ..excitation.signal import evaluate
 from ..models.dynamics import accelerations, kinetic_energy
-from ..models.modes import EXCEED, FALL, IMPACT, N_GUARDS, STOP, evaluate_guards, select_regime
+from ..models.modes import (
+    EXCEED,
+    FALL,
+    IMPACT,
+    N_GUARDS,
+    ROCK_TO_NEGATIVE,
+    ROCK_TO_POSITIVE,
+    SLIP_TO_NEGATIVE,
+    SLIP_TO_POSITIVE,
+    STOP,
+    evaluate_guards,
+    select_regime,
+)
 from ..models.parameters import B, CAN_SLIDE, ETA, H, I_O, IMPACT_COULOMB, M, M2, MU_K, MU_S, REST_VEL, pack
 from ..models.regimes import EventKind, Regime
 from ..results.response import Impact
@@ -95,9 +108,15 @@ from .compiled import (
 
 __all__ = ["simulate_reference", "integrate_reference"]
 
-_START_TOL = 64.0 * np.finfo(float).eps  # relative: "an event at the segment start"
+_EPS = float(np.finfo(float).eps)
+GUARD_DT = 1e-3  # s: largest spacing of the extra guard samples inside a DOP853 step
+_START_TOL = 64.0 * _EPS  # relative: "an event at the segment start"
 _SENTINEL = 1e-300  # |value| standing for a guard's right-hand limit sign at the segment start
-ARMED, ZERO, DISARMED = 0, 1, 2  # how a guard is watched during a solve_ivp call
+# How a guard is watched during one solve_ivp call: positive at the start (ARMED); exactly zero
+# and known to leave zero upwards (ZERO); negative, waiting to come back up (DISARMED); a
+# threshold tie resolved the wrong way (IMMEDIATE: its regime ends at once).
+ARMED, ZERO, DISARMED, IMMEDIATE = 0, 1, 2, 3
+_THRESHOLDS = (SLIP_TO_NEGATIVE, SLIP_TO_POSITIVE, ROCK_TO_NEGATIVE, ROCK_TO_POSITIVE)  # cone, rocking threshold
 
 
 class _Singular(Exception):
@@ -146,20 +165,55 @@ def _piece_function(signal, piece):
     return lambda t: float(evaluate(kind, params, times, values, t, piece))
 
 
+def _scan_guards(sol, t_start, t_end, ev_funcs, guard_dt):
+    """Earliest sign change of the event functions ``ev_funcs`` (in their own direction) on the
+    dense output ``sol`` over [t_start, t_end], sampled inside every step at a spacing of at most
+    ``guard_dt`` (and at least 4 points per step). Returns (index, root time) or None."""
+    ts = sol.ts
+    ts = ts[(ts > t_start) & (ts < t_end)]
+    nodes = np.concatenate(([t_start], ts, [t_end]))
+    pieces = [nodes[:1]]
+    for ta, tb in zip(nodes[:-1], nodes[1:]):
+        n = max(4, int(math.ceil((tb - ta) / guard_dt)))
+        pieces.append(ta + (tb - ta) * np.arange(1, n + 1) / n)
+    times = np.concatenate(pieces)
+    times[-1] = t_end
+    ys = sol(times)
+    n_ev = len(ev_funcs)
+    best = None
+    prev = [ev_funcs[k](times[0], ys[:, 0]) for k in range(n_ev)]
+    for j in range(1, times.size):
+        tj = times[j]
+        yj = np.ascontiguousarray(ys[:, j])
+        for k in range(n_ev):
+            g = ev_funcs[k](tj, yj)
+            d = ev_funcs[k].direction
+            if (d < 0 and prev[k] > 0.0 and g <= 0.0) or (d > 0 and prev[k] < 0.0 and g >= 0.0):
+                ev = ev_funcs[k]
+                root = brentq(lambda tt: ev(tt, sol(tt)), times[j - 1], tj, xtol=4 * _EPS, rtol=4 * _EPS)
+                if best is None or root < best[1]:
+                    best = (k, root)
+            prev[k] = g
+        if best is not None:
+            return best
+    return None
+
+
 def _breakpoints(motion, t0, t_end):
     bp = np.asarray(motion.breakpoints, dtype=float)
     return np.unique(bp[(bp > t0) & (bp < t_end)])
 
 
 def _active_guards(p, sig, s, exceeded):
+    """Indices of the guards that can end the regime (sig, s); the others are constant +1."""
     out = []
     if sig == 0:
         if p[CAN_SLIDE] > 0.5:
-            out += [0, 1]
+            out += [SLIP_TO_NEGATIVE, SLIP_TO_POSITIVE]
     else:
         out.append(STOP)
     if s == 0:
-        out += [3, 4]
+        out += [ROCK_TO_NEGATIVE, ROCK_TO_POSITIVE]
     else:
         out.append(IMPACT)
         if not exceeded:
@@ -169,48 +223,51 @@ def _active_guards(p, sig, s, exceeded):
 
 
 def integrate_reference(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_step, save_dt, save,
-                        max_events):
+                        max_events, guard_dt=GUARD_DT):
     """Integrate the hybrid system from ``t0`` to ``t_end`` with SciPy's DOP853.
 
     Arguments as :func:`rocking.solver.compiled.integrate` (``sig_h``/``sig_v`` are
-    ``excitation.base.Signal`` tuples, ``y_init`` holds at least (u, u̇, θ, θ̇)). Returns a dict:
-    ``t``, ``state`` (n×4), ``regime``, ``on_grid`` (True for the uniform-grid rows; the other
-    rows are the states just before and after each event, as in the compiled output),
+    ``excitation.base.Signal`` tuples, ``y_init`` holds at least (u, u̇, θ, θ̇)); ``guard_dt`` is
+    the largest spacing of the extra guard samples inside a step (0 turns them off). Returns a
+    dict: ``t``, ``state`` (n×4), ``regime``, ``on_grid`` (True for the uniform-grid rows; the
+    other rows are the states just before and after each event, as in the compiled output),
     ``event_table`` (compiled layout), ``status`` and the scalar results.
     """
     sig_h = tuple(sig_h)
     sig_v = tuple(sig_v)
-    y = np.zeros(4)
-    y[:] = np.asarray(y_init, dtype=float)[:4]
-    nb = breakpoints.shape[0]
-    ib = 0
-    t = float(t0)
+    t0 = float(t0)
     t_end = float(t_end)
-
+    st = {  # the mutable state of the run (closures below update it)
+        "t": t0, "y": np.array(np.asarray(y_init, dtype=float)[:4]), "sig": 0, "s": 0, "ib": 0,
+        "exceeded": False, "impacts": 0, "indeterminate": 0, "ignored_start": 0, "sampled": 0,
+        "immediate": 0, "rhs": 0, "calls": 0, "peak_theta": 0.0, "peak_u": 0.0,
+        "first_rock": math.nan, "first_slide": math.nan, "next_grid": 0,
+    }
+    nb = breakpoints.shape[0]
     n_grid = int(math.floor((t_end - t0) / save_dt + 1e-9)) + 1 if save else 0
     grid = t0 + np.arange(n_grid) * save_dt
     t_out, y_out, r_out, g_out = [], [], [], []
-    next_grid = 0
     events = []  # rows in the layout of the compiled event table
     status = "completed"
-    exceeded = False
-    impacts = 0
-    indeterminate = 0
-    ignored_start = 0
-    n_rhs = 0
-    n_calls = 0
-    peak_theta = 0.0
-    peak_u = 0.0
     overturn_time = math.nan
     exceed_time = math.nan
-    first_rock = math.nan
-    first_slide = math.nan
     gbuf = np.empty(N_GUARDS)
-    g_start = np.empty(N_GUARDS)
-    override = {}  # guard index -> mode forced at the next restart (same instant)
 
     def stop_time():
+        ib = st["ib"]
         return min(float(breakpoints[ib]), t_end) if ib < nb else t_end
+
+    def skip_passed_breakpoints():
+        while st["ib"] < nb and breakpoints[st["ib"]] <= st["t"]:
+            st["ib"] += 1
+
+    def ground_on(piece):
+        fh, fv = _piece_function(sig_h, piece), _piece_function(sig_v, piece)
+
+        def accel(tt):
+            return (fh(tt) if fh else 0.0), (fv(tt) if fv else 0.0)
+
+        return accel
 
     def record(tt, yy, regime, on_grid):
         t_out.append(tt)
@@ -218,71 +275,79 @@ def integrate_reference(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, a
         r_out.append(regime)
         g_out.append(on_grid)
 
+    def sample_grid(t_a, t_b, evaluate_at, regime):
+        """Grid points in [t_a, t_b] (the state before any event at t_b)."""
+        while st["next_grid"] < n_grid:
+            tg = grid[st["next_grid"]]
+            if tg > t_b + 1e-12 * (t_b - t_a):
+                break
+            if tg >= t_a:
+                record(tg, evaluate_at(min(tg, t_b)), regime, True)
+            st["next_grid"] += 1
+
     def cross_breakpoint():
-        """At a jump of the floor motion (t = t_stop < t_end): the regime may change here."""
-        nonlocal ib, sig, s, indeterminate, first_rock, first_slide
-        if not (t >= t_stop and t < t_end):
-            return
-        ib += 1
+        """At a breakpoint of the floor motion (t = t_stop < t_end) the regime may change."""
+        t, y, sig, s = st["t"], st["y"], st["sig"], st["s"]
+        st["ib"] += 1
         t_next = stop_time()
-        piece_next = t + 0.5 * (t_next - t)
-        fh2, fv2 = _piece_function(sig_h, piece_next), _piece_function(sig_v, piece_next)
-        a2 = fh2(t) if fh2 else 0.0
-        av2 = fv2(t) if fv2 else 0.0
+        a2, av2 = ground_on(t + 0.5 * (t_next - t))(t)
         sig2, s2, ok2 = select_regime(p, y, s, a2, av2, False, False)
         sig2, s2 = int(sig2), int(s2)
         if not ok2:
-            indeterminate += 1
-        if sig2 != sig or s2 != s:
-            if len(events) < max_events:
-                events.append((t, EV_BREAKPOINT, _regime(sig, s), _regime(sig2, s2), y[1], y[1], y[3], y[3], 0.0, 0.0))
-            if s2 != 0 and math.isnan(first_rock):
-                first_rock = t
-            if sig2 != 0 and math.isnan(first_slide):
-                first_slide = t
-        sig, s = sig2, s2
+            st["indeterminate"] += 1
+        if (sig2 != sig or s2 != s) and len(events) < max_events:
+            events.append((t, EV_BREAKPOINT, _regime(sig, s), _regime(sig2, s2), y[1], y[1], y[3], y[3], 0.0, 0.0))
+        st["sig"], st["s"] = sig2, s2
 
-    while ib < nb and breakpoints[ib] <= t:
-        ib += 1
+    # Initial regime.
+    skip_passed_breakpoints()
     t_stop = stop_time()
-    piece = t + 0.5 * (t_stop - t)
-    fh, fv = _piece_function(sig_h, piece), _piece_function(sig_v, piece)
-    a = fh(t) if fh else 0.0
-    av = fv(t) if fv else 0.0
+    a, av = ground_on(t0 + 0.5 * (t_stop - t0))(t0)
+    y = st["y"]
     s_init = 0
     if y[2] != 0.0:
         s_init = 1 if y[2] > 0.0 else -1
     elif y[3] != 0.0:
         s_init = 1 if y[3] > 0.0 else -1
     sig, s, ok = select_regime(p, y, s_init, a, av, False, False)
-    sig, s = int(sig), int(s)
+    st["sig"], st["s"] = int(sig), int(s)
     if not ok:
-        indeterminate += 1
-    if s != 0:
-        first_rock = t
-    if sig != 0:
-        first_slide = t
+        st["indeterminate"] += 1
 
+    override = {}  # guard index -> how to watch it at the next restart (same instant)
     try:
-        while t < t_end:
-            while ib < nb and breakpoints[ib] <= t:
-                ib += 1
+        while st["t"] < t_end:
+            skip_passed_breakpoints()
             t_stop = stop_time()
-            if t_stop - t <= _START_TOL * max(1.0, abs(t)):
-                t = t_stop  # a sliver before a breakpoint: nothing moves measurably
-                cross_breakpoint()
+            t_start, y = st["t"], st["y"]
+            sig_c, s_c, exc_c = st["sig"], st["s"], st["exceeded"]
+            if t_stop - t_start <= _START_TOL * max(1.0, abs(t_start)):
+                st["t"] = t_stop  # a sliver before a breakpoint: nothing moves measurably
+                if t_stop < t_end:
+                    cross_breakpoint()
+                continue
+            accel = ground_on(t_start + 0.5 * (t_stop - t_start))
+            a0, av0 = accel(t_start)
+            g_start = np.empty(N_GUARDS)
+            evaluate_guards(p, sig_c, s_c, y, a0, av0, exc_c, g_start)
+            active = _active_guards(p, sig_c, s_c, exc_c)
+            modes = {}
+            for i in active:
+                g = g_start[i]
+                modes[i] = override.get(i, ARMED if g > 0.0 else (ZERO if g == 0.0 else DISARMED))
+            override = {}
+
+            # A held/at-rest regime whose threshold is already exceeded ends at once (the compiled
+            # solver: an unarmed threshold guard that stays negative fires at the step start; of
+            # several, the last in guard order is taken).
+            immediate = [i for i in active if i in _THRESHOLDS and modes[i] in (DISARMED, IMMEDIATE)]
+            sol = None
+            if immediate:
+                fired, te = max(immediate), t_start
+                st["immediate"] += 1
             else:
-                piece = t + 0.5 * (t_stop - t)
-                fh, fv = _piece_function(sig_h, piece), _piece_function(sig_v, piece)
-                sig_c, s_c, exc_c = sig, s, exceeded
-                t_start = t
-
-                def accel(tt):
-                    return (fh(tt) if fh else 0.0), (fv(tt) if fv else 0.0)
-
                 def rhs(tt, yy):
-                    nonlocal n_rhs
-                    n_rhs += 1
+                    st["rhs"] += 1
                     ag, avg = accel(tt)
                     udd, thdd, okk = accelerations(p, sig_c, s_c, yy[1], yy[2], yy[3], ag, avg)
                     if not okk:
@@ -299,20 +364,12 @@ def integrate_reference(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, a
                         cache_key[0] = key
                     return gbuf
 
-                a0, av0 = accel(t_start)
-                evaluate_guards(p, sig_c, s_c, y, a0, av0, exc_c, g_start)
-                active = _active_guards(p, sig_c, s_c, exc_c)
-                modes = {}
-                for i in active:
-                    g = g_start[i]
-                    modes[i] = override.get(i, ARMED if g > 0.0 else (ZERO if g == 0.0 else DISARMED))
-                override = {}
-
                 def make_event(i, mode):
                     at_start = _SENTINEL if mode == ZERO else -_SENTINEL
+                    replace = mode != ARMED and g_start[i] == 0.0
 
                     def ev(tt, yy):
-                        if tt == t_start and mode != ARMED and g_start[i] == 0.0:
+                        if replace and tt == t_start:
                             return at_start
                         return float(guards(tt, yy)[i])
 
@@ -330,138 +387,145 @@ def integrate_reference(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, a
                     ev_turn.direction = 0
                     ev_funcs.append(ev_turn)
 
-                n_calls += 1
+                st["calls"] += 1
                 res = solve_ivp(rhs, (t_start, t_stop), y, method="DOP853", rtol=rtol, atol=atol,
                                 max_step=max_step, events=ev_funcs, dense_output=True)
                 if res.status == -1:
                     status = "step_failed"
                     break
-                fired = -1
-                te = t_stop
+                sol = res.sol
+                fired, te = -1, t_stop
                 if res.status == 1:
                     best = math.inf
                     for k, i in enumerate(active):
                         if len(res.t_events[k]) and res.t_events[k][0] < best:
-                            best, fired = float(res.t_events[k][0]), i
+                            fired, best = i, float(res.t_events[k][0])
                     te = best
-                    near_start = te - t_start <= _START_TOL * max(1.0, abs(t_start))
-                    if modes[fired] == ZERO and near_start:
-                        # The guard does not leave zero upwards after all (the selected regime was
-                        # not consistent): ignore it until it has been positive, as the compiled
-                        # solver does. Restart at the same instant with it disarmed.
-                        ignored_start += 1
-                        override = {fired: DISARMED}
-                        continue
-                sol = res.sol
+                if guard_dt > 0.0:
+                    # Guards that dip through zero and back within one DOP853 step (SciPy only
+                    # compares the signs at the step ends): sample the dense output inside steps.
+                    found = _scan_guards(sol, t_start, te, ev_funcs[:len(active)], guard_dt)
+                    if found is not None and (found[1] < te or fired < 0):
+                        if active[found[0]] != fired or te - found[1] > 1e-12 * max(1.0, abs(te)):
+                            st["sampled"] += 1  # an excursion SciPy's step-end test did not see
+                        fired, te = active[found[0]], min(found[1], te)
+                if fired >= 0 and modes[fired] == ZERO and te - t_start <= _START_TOL * max(1.0, abs(t_start)):
+                    # The guard does not leave zero upwards after all (a tie resolved the other way):
+                    # a threshold guard ends its regime at once; any other guard is ignored until it
+                    # has been positive (as the compiled solver does). Restart at the same instant.
+                    st["ignored_start"] += 1
+                    override = {fired: IMMEDIATE if fired in _THRESHOLDS else DISARMED}
+                    continue
                 if turning:
                     for tk, yk in zip(res.t_events[-1], res.y_events[-1]):
                         if tk <= te:
-                            peak_theta = max(peak_theta, abs(float(yk[2])))
+                            st["peak_theta"] = max(st["peak_theta"], abs(float(yk[2])))
 
-                # Output grid up to the end of this piece (the state before any event).
-                if save:
-                    while next_grid < n_grid:
-                        tg = grid[next_grid]
-                        if tg > te + 1e-12 * (te - t_start):
-                            break
-                        if tg >= t_start:
-                            record(tg, sol(min(tg, te)), _regime(sig_c, s_c), True)
-                        next_grid += 1
+            # A regime counts as entered once it lasts (as in the compiled solver).
+            if te > t_start:
+                if s_c != 0 and math.isnan(st["first_rock"]):
+                    st["first_rock"] = t_start
+                if sig_c != 0 and math.isnan(st["first_slide"]):
+                    st["first_slide"] = t_start
+            if save:
+                y_const = y
+                sample_grid(t_start, te, sol if sol is not None else (lambda tt: y_const), _regime(sig_c, s_c))
+            if sol is not None:
+                y = np.array(sol(te), dtype=float)
+            else:
+                y = y.copy()
+            st["t"], st["y"] = te, y
+            st["peak_theta"] = max(st["peak_theta"], abs(y[2]))
+            st["peak_u"] = max(st["peak_u"], abs(y[0]))
 
-                t = te
-                y = np.array(sol(te) if fired >= 0 else res.y[:, -1], dtype=float)
-                peak_theta = max(peak_theta, abs(y[2]))
-                peak_u = max(peak_u, abs(y[0]))
-
-                if fired >= 0 and modes[fired] == DISARMED:
-                    # A disarmed guard came back to positive: restart here with it armed
-                    # (it is about zero now, and known to leave zero upwards).
-                    override = {fired: ZERO}
-                    continue
-                if fired < 0:
+            if fired >= 0 and modes[fired] == DISARMED:
+                # A disarmed guard came back up through zero: restart here with it watched.
+                override = {fired: ZERO}
+                continue
+            if fired < 0:
+                if te >= t_stop and te < t_end:
                     cross_breakpoint()
-                    continue
+                continue
 
-                # ---- transition at a terminal event (as in the compiled loop) ----
-                a, av = accel(t)
-                regime_before = _regime(sig, s)
-                ud_before, thd_before = float(y[1]), float(y[3])
-                lost = 0.0
-                ratio = 0.0
-                sig2, s2, ok = sig, s, True
-                if save:
-                    record(t, y, regime_before, False)
-                if fired == FALL:
-                    kind = EV_FALL
-                    overturn_time = t
-                    status = "overturned"
-                elif fired == EXCEED:
-                    kind = EV_EXCEED
-                    exceeded = True
-                    exceed_time = t
-                elif fired == IMPACT:
-                    kind = EV_IMPACT
-                    impacts += 1
-                    y[2] = 0.0
-                    t_before = kinetic_energy(p, s, y[1], 0.0, y[3])
-                    if p[IMPACT_COULOMB] > 0.5:
-                        ud1, thd1, fx, fy, okc = impact_coulomb(
-                            p[I_O], p[M], p[M2], p[B], p[H], p[ETA], p[MU_S], p[MU_K], p[CAN_SLIDE], y[1], y[3]
-                        )
-                        if not okc:
-                            indeterminate += 1
-                    else:
-                        ud1, thd1, fx, fy = impact_paper(p[M], p[M2], p[B], p[H], p[ETA], y[1], y[3])
-                    ratio = float(friction_ratio(fx, fy))
-                    s = -s
-                    y[1] = ud1
-                    y[3] = thd1
-                    if abs(thd1) < p[REST_VEL]:
-                        kind = EV_SETTLE
-                        y[3] = 0.0
-                        s = 0
-                    lost = float(t_before - kinetic_energy(p, s, y[1], 0.0, y[3]))
-                    sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
-                elif fired == STOP:
-                    kind = EV_STOP
-                    y[1] = 0.0
-                    sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
-                elif fired <= 1:
-                    kind = EV_SLIP
-                    sig2, s2, ok = select_regime(p, y, s, a, av, True, False)
+            # ---- transition at an event (as in the compiled loop) ----
+            t = te
+            sig, s = sig_c, s_c
+            a, av = accel(t)
+            regime_before = _regime(sig, s)
+            ud_before, thd_before = float(y[1]), float(y[3])
+            lost = 0.0
+            ratio = 0.0
+            sig2, s2, ok = sig, s, True
+            if save:
+                record(t, y, regime_before, False)
+            if fired == FALL:
+                kind = EV_FALL
+                overturn_time = t
+                status = "overturned"
+            elif fired == EXCEED:
+                kind = EV_EXCEED
+                st["exceeded"] = True
+                exceed_time = t
+            elif fired == IMPACT:
+                kind = EV_IMPACT
+                st["impacts"] += 1
+                y[2] = 0.0
+                t_before = kinetic_energy(p, s, y[1], 0.0, y[3])
+                if p[IMPACT_COULOMB] > 0.5:
+                    ud1, thd1, fx, fy, okc = impact_coulomb(
+                        p[I_O], p[M], p[M2], p[B], p[H], p[ETA], p[MU_S], p[MU_K], p[CAN_SLIDE], y[1], y[3]
+                    )
+                    if not okc:
+                        st["indeterminate"] += 1
                 else:
-                    kind = EV_UPLIFT
-                    sig2, s2, ok = select_regime(p, y, s, a, av, False, True)
-                if fired not in (FALL, EXCEED):
-                    if not ok:
-                        indeterminate += 1
-                    sig2, s2 = int(sig2), int(s2)
-                    if s2 != 0 and math.isnan(first_rock):
-                        first_rock = t
-                    if sig2 != 0 and math.isnan(first_slide):
-                        first_slide = t
-                    sig, s = sig2, s2
-                events.append((t, kind, regime_before, _regime(sig, s), ud_before, float(y[1]), thd_before,
-                               float(y[3]), lost, ratio))
-                if save and kind != EV_EXCEED:
-                    record(t, y, _regime(sig, s), False)
-                peak_u = max(peak_u, abs(y[0]))
-                if status == "overturned":
-                    break
-                if len(events) >= max_events:
-                    status = "max_events"
-                    break
+                    ud1, thd1, fx, fy = impact_paper(p[M], p[M2], p[B], p[H], p[ETA], y[1], y[3])
+                ratio = float(friction_ratio(fx, fy))
+                s = -s
+                y[1] = ud1
+                y[3] = thd1
+                if abs(thd1) < p[REST_VEL]:
+                    kind = EV_SETTLE
+                    y[3] = 0.0
+                    s = 0
+                lost = float(t_before - kinetic_energy(p, s, y[1], 0.0, y[3]))
+                sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
+            elif fired == STOP:
+                kind = EV_STOP
+                y[1] = 0.0
+                sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
+            elif fired <= 1:
+                kind = EV_SLIP
+                sig2, s2, ok = select_regime(p, y, s, a, av, True, False)
+            else:
+                kind = EV_UPLIFT
+                sig2, s2, ok = select_regime(p, y, s, a, av, False, True)
+            if fired not in (FALL, EXCEED):
+                if not ok:
+                    st["indeterminate"] += 1
+                sig, s = int(sig2), int(s2)
+            st["sig"], st["s"] = sig, s
+            events.append((t, kind, regime_before, _regime(sig, s), ud_before, float(y[1]), thd_before,
+                           float(y[3]), lost, ratio))
+            if save and kind != EV_EXCEED:
+                record(t, y, _regime(sig, s), False)
+            st["peak_u"] = max(st["peak_u"], abs(y[0]))
+            if status == "overturned":
+                break
+            if len(events) >= max_events:
+                status = "max_events"
+                break
     except _Singular:
         status = "singular"
 
+    t, y = st["t"], st["y"]
     if save and status != "overturned":
         # Last grid point(s) reached exactly at t_end (the grid may overshoot it by 1e-9·save_dt).
-        while next_grid < n_grid:
-            tg = grid[next_grid]
+        while st["next_grid"] < n_grid:
+            tg = grid[st["next_grid"]]
             if tg > t + 1e-9:
                 break
-            record(tg, y, _regime(sig, s), True)
-            next_grid += 1
+            record(tg, y, _regime(st["sig"], st["s"]), True)
+            st["next_grid"] += 1
 
     return {
         "t": np.array(t_out, dtype=float),
@@ -472,19 +536,21 @@ def integrate_reference(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, a
         "status": status,
         "overturn_time": overturn_time,
         "exceeded_alpha_time": exceed_time,
-        "peak_rotation": peak_theta,
-        "peak_sliding": peak_u,
+        "peak_rotation": st["peak_theta"],
+        "peak_sliding": st["peak_u"],
         "residual_sliding": float(y[0]),
-        "impacts": impacts,
-        "first_rocking_time": first_rock,
-        "first_sliding_time": first_slide,
+        "impacts": st["impacts"],
+        "first_rocking_time": st["first_rock"],
+        "first_sliding_time": st["first_slide"],
         "final_state": y.copy(),
         "end_time": t,
         "diagnostics": {
-            "ignored_start_events": ignored_start,
-            "indeterminate": indeterminate,
-            "rhs_evaluations": n_rhs,
-            "solve_ivp_calls": n_calls,
+            "immediate_events": st["immediate"],
+            "ignored_start_events": st["ignored_start"],
+            "events_found_by_sampling": st["sampled"],
+            "indeterminate": st["indeterminate"],
+            "rhs_evaluations": st["rhs"],
+            "solve_ivp_calls": st["calls"],
         },
     }
 
