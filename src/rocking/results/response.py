@@ -174,10 +174,12 @@ class Response:
         """Instants where the model's assumptions fail (derivation §3.5), in words."""
         s = self.raw_summary
         out = []
+        body = "pedestal" if self.system.pedestal is not None else "block"
         checks = [
-            (C.S_N_NONPOSITIVE, "the floor normal force reached zero (the pedestal would jump)"),
+            (C.S_N_NONPOSITIVE, f"the floor normal force reached zero (the {body} would jump)"),
             (C.S_PY_NONPOSITIVE, "the statue's base force reached zero (the statue would lift off)"),
-            (C.S_TOP_SLIP, "the statue would slip on the pedestal (top-face friction exceeded)"),
+            (C.S_TOP_SLIP, "the statue would slip on the pedestal (top-face friction exceeded, "
+                           "during rocking or at an impact)"),
             (C.S_UPLIFT, "the pedestal would uplift (normal force outside its base)"),
         ]
         for index, text in checks:

@@ -500,6 +500,8 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                 lx = p[M2] * ((ud1 - y[1]) + p[H] * (thd1 - y[3]))
                 ly = p[M2] * p[B] * (abs(thd1) + abs(y[3]))
                 top_ratio = max(top_ratio, friction_ratio(lx, ly))
+                if p[MU_TOP] >= 0.0 and friction_ratio(lx, ly) > p[MU_TOP] and math.isnan(summ[S_TOP_SLIP]):
+                    summ[S_TOP_SLIP] = t
                 s = -s
                 y[1] = ud1
                 y[3] = thd1

@@ -157,8 +157,6 @@ def write_paper_figures(
 ) -> list[Path]:
     """Write ``paper_fig_<case>.png`` for every case present in ``responses``
     (``{(case, variant): Response}``, as filled by :func:`run_paper_cases`)."""
-    import matplotlib.pyplot as plt  # noqa: F401  (registers the Agg canvas)
-
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     paths = []
@@ -206,7 +204,7 @@ def plot_friction_sweep(sweeps: Mapping[str, Sequence[Mapping[str, Any]]], *, ti
         ax2.plot(mu, [r["peak_sliding"] for r in rows], "-", color=color, lw=1.2, label=label)
         times = [(r["static_friction"], r["overturn_time"]) for r in rows if r["overturned"]]
         if times:
-            ax3.plot(*zip(*times), "o-", color=color, ms=3.5, lw=0.8, label=f"{label}: on pedestal")
+            ax3.plot(*zip(*times), "o", color=color, ms=4, ls="none", label=f"{label}: on pedestal")
         if rows[0]["alone_overturned"]:
             ax3.axhline(rows[0]["alone_overturn_time"], color=color, lw=0.8, ls="--", label=f"{label}: statue alone")
     for ax in (ax1, ax2, ax3):
@@ -216,10 +214,10 @@ def plot_friction_sweep(sweeps: Mapping[str, Sequence[Mapping[str, Any]]], *, ti
     ax1.axhline(1.0, color="0.45", lw=0.8, ls=":")
     ax1.set_ylim(0.0, top)
     ax1.set_ylabel("peak |θ|/α")
-    ax1.text(tan_alpha, top * 0.5, " μs = tan α\n (O17: no rocking\n  to the left)", fontsize=8, va="center")
-    ax1.text(tan_alpha / ratio, top * 0.82, f" μk = tan α\n (μs = {tan_alpha / ratio:.3f})", fontsize=8, va="center")
+    ax1.text(tan_alpha, top * 0.3, " μs = tan α\n (O17: no rocking\n  to the left)", fontsize=8, va="center")
+    ax1.text(tan_alpha / ratio, top * 0.72, f" μk = tan α\n (μs = {tan_alpha / ratio:.3f})", fontsize=8, va="center")
     ax1.set_title("(a) peak rotation of the statue on the pedestal (▼: overturned)", loc="left", fontsize=9)
-    ax1.legend(fontsize=7, loc="center right")
+    ax1.legend(fontsize=7, loc="upper left")
     ax2.set_ylabel("peak |u| (m)")
     ax2.set_title("(b) peak sliding of the pedestal", loc="left", fontsize=9)
     ax2.legend(fontsize=7)
@@ -232,9 +230,9 @@ def plot_friction_sweep(sweeps: Mapping[str, Sequence[Mapping[str, Any]]], *, ti
     fig.suptitle(
         title
         or (
-            f"Statue H = {r0['height']:g} m (tan α = {tan_alpha:g}), m2 = {r0['statue_mass']:g} kg on a pedestal "
-            f"m1 = {r0['pedestal_mass']:g} kg; ẍg = A cos ωt, ω = {r0['omega']:.4f} s⁻¹; "
-            "normal_force='full', impact='coulomb', r = 0.8"
+            f"Statue B × H = 1 × {r0['height']:g} m (tan α = {tan_alpha:g}), m2 = {r0['statue_mass']:g} kg, r = 0.8, "
+            f"on a pedestal m1 = {r0['pedestal_mass']:g} kg; ẍg = A cos ωt, ω = {r0['omega']:.4f} s⁻¹\n"
+            "model: normal_force='full', impact='coulomb' (default); vertical lines: μs = tan α and μk = tan α"
         ),
         fontsize=9,
     )
@@ -277,7 +275,8 @@ def write_design_insight(out_dir: str | Path, *, dpi: int = 110) -> list[Path]:
     alone = {"alone, μ = ∞": simulate(System(statue=statue), motion, options=options)}
     title = (
         f"Statue 1 × 4 m, m2 = 1 kg, r = 0.8, pedestal m1 = 1 kg; ẍg = {DELAY_AMPLITUDE:g} cos(ωt) m/s², "
-        f"ω = {motion.omega:.4f} s⁻¹, g = {t1.gravity}; normal_force='full', impact='coulomb'\n"
+        f"ω = {motion.omega:.4f} s⁻¹, 30 cycles, g = {t1.gravity} m/s²\n"
+        "model: normal_force='full', impact='coulomb' (default)\n"
         f"μs = {DELAY_FRICTION:g}: the pedestal only delays the fall;  μs = 0.6: it avoids it"
     )
     plot_comparison(runs, alone, title).savefig(paths[1], dpi=dpi)

@@ -1,0 +1,108 @@
+"""Reports of one simulation: a self-contained ``report.html`` and a ``report.pdf``.
+
+    >>> from rocking.report import write_report
+    >>> write_report("examples/statue_on_pedestal.toml", "results/pedestal")   # doctest: +SKIP
+    PosixPath('results/pedestal/report.html')
+
+The HTML page has its CSS inline and its figures embedded as base64 PNG (no external URL); the
+PDF is made with matplotlib's PdfPages (a text page, then the figures). Both say the same: the
+inputs, a one-sentence verdict, the key figures (the summary), the response and energy plots,
+the model's assumptions and the warnings.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+from .content import ReportContent, build_content, verdict
+
+__all__ = ["ReportContent", "build_content", "verdict", "write_report"]
+
+
+def _resolve(source: Any) -> tuple[Any, Any]:
+    """(config or None, Response) from a Response, a (Config, Response) pair, or a config."""
+    from ..results.response import Response
+
+    if isinstance(source, Response):
+        return None, source
+    if isinstance(source, tuple) and len(source) == 2 and isinstance(source[1], Response):
+        return source
+    if isinstance(source, (str, os.PathLike, Mapping)) or type(source).__name__ == "Config":
+        from ..runner import run_response
+
+        return run_response(source)
+    raise TypeError(
+        "write_report needs a Response, a (Config, Response) pair, a config file path, a config "
+        f"dict or a Config; got {type(source).__name__}"
+    )
+
+
+def write_report(
+    config_or_response: Any,
+    out_dir: str | os.PathLike[str],
+    *,
+    title: str | None = None,
+    inputs: Mapping[str, Any] | None = None,
+    pdf: bool = True,
+    dpi: int = 110,
+) -> Path:
+    """Write ``report.html`` (and ``report.pdf``) into ``out_dir``.
+
+    Parameters
+    ----------
+    config_or_response : Response, (Config, Response), path, dict or Config
+        What to report. A configuration (TOML path, dict of the same tables, or a loaded
+        :class:`~rocking.io.config.Config`) is simulated first with
+        :func:`rocking.runner.run_response`.
+    out_dir : path-like
+        Folder, created if needed.
+    title : str, optional
+        Page title (default: the statue's size, pedestal or not, and the config file name).
+    inputs : mapping, optional
+        Extra inputs shown as a "Configuration" table (e.g. the raw TOML tables), for callers
+        that only hold a Response.
+    pdf : bool
+        Also write ``report.pdf``.
+    dpi : int
+        Resolution of the embedded figures.
+
+    Returns
+    -------
+    pathlib.Path
+        The HTML file.
+
+    Raises
+    ------
+    ConfigError
+        For an invalid configuration (from :func:`rocking.runner.run_response`).
+    TypeError
+        For anything else that is not a Response or a configuration.
+    """
+    from ..viz.plots import plot_energy, plot_response
+    from .html import png_base64, write_html
+    from .pdf import write_pdf
+
+    config, response = _resolve(config_or_response)
+    content = build_content(response, config, title=title, inputs=inputs)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+
+    fig_response = plot_response(response)
+    ax_energy = plot_energy(response)
+    fig_energy = ax_energy.figure
+    figures = [
+        ("Rotation θ/α, sliding u and floor acceleration against time; the background shows the regime "
+         "(rest white, rock orange, slide blue, slide-rock purple), ticks mark impacts.", fig_response),
+        ("Mechanical energy relative to the floor, with the final energy ledger.", fig_energy),
+    ]
+    s = response.summary()
+    klass = "fails" if s["overturned"] else ("safe" if s["status"] == "completed" else "stopped")
+    html_path = write_html(
+        content, [(cap, png_base64(fig, dpi)) for cap, fig in figures], out / "report.html", verdict_class=klass
+    )
+    if pdf:
+        write_pdf(content, [fig for _, fig in figures], out / "report.pdf")
+    return html_path

@@ -1,0 +1,265 @@
+"""Animation of a simulation: the floor, the pedestal and the statue drawn to scale.
+
+The floor moves by its displacement (the floor acceleration integrated twice with the trapezoid
+rule, for the drawing only), the pedestal slides on it by u, and the statue rotates by θ about
+its active corner (+b for θ > 0, −b for θ < 0, from the centre of its base; θ > 0 tilts it
+towards +x). Without a pedestal u moves the statue itself.
+
+    >>> from rocking.viz import animate
+    >>> animate(response, "statue.gif")                  # doctest: +SKIP
+    >>> animate(response, "statue.mp4", speed=0.5)       # doctest: +SKIP  (needs ffmpeg)
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import shutil
+from pathlib import Path
+
+import numpy as np
+from matplotlib.figure import Figure
+from matplotlib.patches import Polygon, Rectangle
+
+from ..models.regimes import Regime
+from .plots import COLORS, REGIME_COLORS, REGIME_NAMES, floor_motion
+
+__all__ = ["animate", "frame_times"]
+
+
+def frame_times(response, *, speed: float = 1.0, fps: float = 25, max_seconds: float | None = None) -> np.ndarray:
+    """Simulated times shown by the frames of :func:`animate`.
+
+    ``n = max(1, round(fps · D / speed))`` frames, D the simulated duration (``t[-1] − t[0]``),
+    cut to ``fps · max_seconds`` frames of video; frame k shows t0 + k·speed/fps, except that
+    the last frame of an uncut animation shows the final state.
+    """
+    if not (speed > 0 and math.isfinite(speed)):
+        raise ValueError(f"speed must be a positive number, got {speed!r}")
+    if not (fps > 0 and math.isfinite(fps)):
+        raise ValueError(f"fps must be a positive number, got {fps!r}")
+    if max_seconds is not None and not max_seconds > 0:
+        raise ValueError(f"max_seconds must be positive, got {max_seconds!r}")
+    t = np.asarray(response.t, dtype=float)
+    if t.size == 0:
+        raise ValueError("the response holds no saved states (simulate with save=True)")
+    t0, t1 = float(t[0]), float(t[-1])
+    video = (t1 - t0) / speed
+    n = max(1, int(round(fps * video)))
+    cut = False
+    if max_seconds is not None and n > int(round(fps * max_seconds)):
+        n, cut = max(1, int(round(fps * max_seconds))), True
+    times = t0 + np.arange(n) * speed / fps
+    if not cut and n > 1:
+        times[-1] = t1
+    return np.minimum(times, t1)
+
+
+def _state_at(response, times: np.ndarray) -> dict[str, np.ndarray]:
+    """Saved states at the frame times: positions interpolated linearly, the regime of the last
+    saved state at or before each time (after an event: the new regime)."""
+    t = np.asarray(response.t, dtype=float)
+    _, xg = floor_motion(response)
+    idx = np.clip(np.searchsorted(t, times, side="right") - 1, 0, t.size - 1)
+    return {
+        "xg": np.interp(times, t, xg),
+        "u": np.interp(times, t, np.asarray(response.u)),
+        "theta": np.interp(times, t, np.asarray(response.theta)),
+        "regime": np.asarray(response.regime)[idx],
+    }
+
+
+def _statue_outline(xc: float, yb: float, b: float, h: float, theta: float) -> np.ndarray:
+    """Corners of the statue whose base centre rests at (xc, yb), rotated clockwise by θ about
+    the corner (S·b, 0), S = sign θ (the key-point formula of the Response, Eqs. 8–9)."""
+    pts = np.array([[-b, 0.0], [b, 0.0], [b, 2.0 * h], [-b, 2.0 * h]])
+    if theta != 0.0:
+        s = math.copysign(1.0, theta)
+        c, sn = math.cos(theta), math.sin(theta)
+        rx = pts[:, 0] - s * b
+        ry = pts[:, 1]
+        pts = np.column_stack((s * b + c * rx + sn * ry, -sn * rx + c * ry))
+    return pts + np.array([xc, yb])
+
+
+class _PalettePillowWriter:
+    """Factory for a PillowWriter that stores frames as 8-bit palette images (a quarter of the
+    memory of RGBA) with one palette for the whole GIF (no colour flicker)."""
+
+    @staticmethod
+    def make(fps: float, swatch: list[str]):
+        from matplotlib.animation import PillowWriter
+        from matplotlib.colors import to_rgb
+        from PIL import Image
+
+        class Writer(PillowWriter):
+            def setup(self, fig, outfile, dpi=None):
+                super().setup(fig, outfile, dpi=dpi)
+                self._palette = None
+
+            def grab_frame(self, **savefig_kwargs):
+                from io import BytesIO
+
+                buf = BytesIO()
+                self.fig.savefig(buf, **{**savefig_kwargs, "format": "rgba", "dpi": self.dpi})
+                w, h = self.frame_size
+                im = Image.frombuffer("RGBA", (w, h), buf.getbuffer(), "raw", "RGBA", 0, 1).convert("RGB")
+                if self._palette is None:
+                    # palette from the first frame plus every colour (and its blends with white
+                    # and black, for antialiasing) that later frames may show
+                    rows = []
+                    for c in swatch:
+                        rgb = np.array(to_rgb(c))
+                        for f in np.linspace(0.0, 1.0, 6):
+                            rows.append(rgb * (1 - f) + f)
+                            rows.append(rgb * (1 - f))
+                    sw = (np.array(rows)[None, :, :] * 255).round().astype(np.uint8)
+                    sw = np.repeat(sw, 4, axis=0)
+                    src = Image.new("RGB", (max(w, sw.shape[1]), h + sw.shape[0]), "white")
+                    src.paste(im, (0, 0))
+                    src.paste(Image.fromarray(sw, "RGB"), (0, h))
+                    self._palette = src.quantize(colors=255, method=Image.Quantize.MEDIANCUT)
+                self._frames.append(im.quantize(palette=self._palette, dither=Image.Dither.NONE))
+
+        return Writer(fps=fps)
+
+
+def animate(
+    response,
+    path: str | os.PathLike[str],
+    *,
+    speed: float = 1.0,
+    fps: float = 25,
+    max_seconds: float | None = None,
+    dpi: int = 80,
+    title: str | None = None,
+) -> Path:
+    """Write an animation of ``response`` to ``path`` (a GIF, or an MP4 with ffmpeg).
+
+    Parameters
+    ----------
+    response : Response
+        Simulated with ``save=True``.
+    path : path-like
+        ``*.gif`` (Pillow, always available) or ``*.mp4`` (needs ``ffmpeg`` on PATH).
+    speed : float
+        Playback speed: 1 is real time, 0.5 half speed.
+    fps : float
+        Frames per second of the video.
+    max_seconds : float, optional
+        Longest video, s: the animation stops there (the frames are ``fps · duration / speed``,
+        at most ``fps · max_seconds``; see :func:`frame_times`).
+    dpi : int
+        Resolution (the figure is 6 × 4.5 in: 480 × 360 pixels at 80 dpi).
+    title : str, optional
+        Text at the top of every frame.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Raises
+    ------
+    ValueError
+        Unknown extension, or bad speed/fps/max_seconds.
+    RuntimeError
+        ``.mp4`` without ffmpeg on PATH (write a ``.gif`` instead).
+    """
+    path = Path(path)
+    ext = path.suffix.lower()
+    if ext not in (".gif", ".mp4"):
+        raise ValueError(f"animation file must end in .gif or .mp4, got {path.name!r}")
+    if ext == ".mp4" and shutil.which("ffmpeg") is None:
+        raise RuntimeError(
+            f"cannot write {path.name}: MP4 needs ffmpeg on PATH, which was not found; "
+            "install ffmpeg or write a .gif instead"
+        )
+    times = frame_times(response, speed=speed, fps=fps, max_seconds=max_seconds)
+    st = _state_at(response, times)
+
+    statue = response.system.statue
+    b, h = statue.b, statue.h
+    ped = getattr(response.system, "pedestal", None)
+    if ped is not None:
+        pw = ped.width if ped.width is not None else 1.5 * statue.width
+        ph = ped.height if ped.height is not None else 0.15 * statue.height
+    else:
+        pw = ph = 0.0
+    alpha = response.alpha
+
+    # fixed view wide enough for the whole motion (the world frame: the floor moves in it),
+    # with equal scales on both axes
+    x_body = st["xg"] + st["u"]
+    margin = max(0.5 * pw, b + 2.0 * h) + 0.1 * (2.0 * h + ph)  # room for a fallen statue
+    lo = float(np.min(x_body)) - margin
+    hi = float(np.max(x_body)) + margin
+    top = ph + 1.25 * math.hypot(2 * b, 2 * h)
+    ground = 0.08 * top
+    box_w, box_h = 0.96 * 6.0, 0.86 * 4.5  # axes size, in
+    if (hi - lo) / (top + ground) < box_w / box_h:
+        extra = 0.5 * ((top + ground) * box_w / box_h - (hi - lo))
+        lo, hi = lo - extra, hi + extra
+    else:
+        top = (hi - lo) * box_h / box_w - ground
+
+    fig = Figure(figsize=(6.0, 4.5))
+    ax = fig.add_axes((0.02, 0.02, box_w / 6.0, box_h / 4.5))
+    ax.set_xlim(lo, hi)
+    ax.set_ylim(-ground, top)
+    ax.set_axis_off()
+    # floor: a strip with marks that move with the floor; a fixed reference triangle at x = 0
+    span = hi - lo
+    ax.add_patch(Rectangle((lo - span, -ground), 3 * span, ground, facecolor="#e4e0d8", edgecolor="none", zorder=1))
+    ax.plot([lo - span, hi + span], [0, 0], color="0.3", lw=1.2, zorder=2)
+    spacing = 10 ** math.floor(math.log10(max(span / 8, 1e-6)))
+    marks = np.arange(lo - span, hi + span, spacing)
+    (floor_marks,) = ax.plot([], [], color="0.45", lw=0.8, zorder=2)
+    ax.plot([0.0], [-ground], marker="^", color="0.2", ms=7, zorder=3, clip_on=False)
+    ped_patch = Rectangle((0, 0), pw, ph, facecolor=COLORS["pedestal"], edgecolor="0.2", lw=1.0, zorder=3)
+    if ped is not None:
+        ax.add_patch(ped_patch)
+    stat_patch = Polygon(_statue_outline(0.0, ph, b, h, 0.0), closed=True, facecolor=COLORS["statue"],
+                         edgecolor="0.2", lw=1.0, zorder=4)
+    ax.add_patch(stat_patch)
+    (pivot,) = ax.plot([], [], "o", color="k", ms=3, zorder=5)
+    txt_t = fig.text(0.03, 0.95, "", fontsize=10, family="monospace", va="center")
+    txt_th = fig.text(0.30, 0.95, "", fontsize=10, family="monospace", va="center")
+    txt_reg = fig.text(0.97, 0.95, "", fontsize=10, va="center", ha="right",
+                       bbox={"boxstyle": "round,pad=0.3", "facecolor": "white", "edgecolor": "0.5"})
+    if title:
+        fig.text(0.5, 0.895, title, fontsize=8, ha="center", va="center", color="0.3")
+    t_fall = response.overturn_time if response.overturned else None
+
+    def draw(k: int) -> None:
+        xg, u, th = float(st["xg"][k]), float(st["u"][k]), float(st["theta"][k])
+        reg = Regime(int(st["regime"][k]))
+        x_ped = xg + u  # centre of the sliding body's base
+        floor_x = np.repeat(marks + (xg % spacing), 3)
+        floor_y = np.tile([0.0, -0.35 * ground, np.nan], marks.size)
+        floor_marks.set_data(floor_x, floor_y)
+        ped_patch.set_xy((x_ped - 0.5 * pw, 0.0))
+        stat_patch.set_xy(_statue_outline(x_ped, ph, b, h, th))
+        if th != 0.0:
+            pivot.set_data([x_ped + math.copysign(b, th)], [ph])
+        else:
+            pivot.set_data([], [])
+        txt_t.set_text(f"t = {times[k]:6.2f} s")
+        txt_th.set_text(f"θ/α = {th / alpha:+.2f}")
+        fallen = t_fall is not None and times[k] >= t_fall - 1e-12
+        txt_reg.set_text("overturned" if fallen else REGIME_NAMES[reg])
+        txt_reg.get_bbox_patch().set_facecolor("#f6c9c4" if fallen else REGIME_COLORS[reg])
+
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if ext == ".gif":
+        swatch = [*REGIME_COLORS.values(), COLORS["statue"], COLORS["pedestal"], "#e4e0d8", "#f6c9c4", "#000000"]
+        writer = _PalettePillowWriter.make(fps, swatch)
+    else:
+        from matplotlib.animation import FFMpegWriter
+
+        writer = FFMpegWriter(fps=fps, codec="h264", extra_args=["-pix_fmt", "yuv420p"])
+    with writer.saving(fig, str(path), dpi):
+        for k in range(times.size):
+            draw(k)
+            writer.grab_frame()
+    return path
