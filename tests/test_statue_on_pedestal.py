@@ -207,3 +207,12 @@ def test_convergence_as_tolerances_tighten():
     assert errors[0] > errors[1] > errors[2]
     assert errors[2] < 1e-8
     assert errors[0] > 10 * errors[2]
+
+
+def test_required_top_friction_of_a_statue_at_rest_is_the_largest_transmitted_acceleration():
+    """9a's statue never rocks: its base needs |a_base|/g, which peaks at μs just before the
+    pedestal slips again (0.29061198 s); while sliding the pedestal transmits μk g < μs g."""
+    st = rk.Statue(width=1.0, height=2.0, mass=1.0, restitution=0.8)
+    r = rk.simulate(on_pedestal(st), rk.Harmonic(amplitude=6.75, frequency=1.2, cycles=1), options=OPTS)
+    assert r.summary()["first_rocking_time"] is None
+    assert r.summary()["required_top_friction"] == pytest.approx(0.4, abs=1e-9)

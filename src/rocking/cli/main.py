@@ -103,11 +103,16 @@ def run_command(
             show_default=False,
         ),
     ] = None,
+    animate: Annotated[
+        bool, typer.Option("--animate", help="Also write animation.gif (needs --out).")
+    ] = False,
 ) -> None:
     """Simulate CONFIG and print the summary (SI units, radians)."""
     cfg = load_config(config)  # every input error surfaces here, before any output
     if out is not None and out.exists() and not out.is_dir():
         raise InputError(f"--out: {out} exists and is not a directory")
+    if animate and out is None:
+        raise InputError("--animate needs --out DIR to write animation.gif into")
     with delayed_spinner(f"simulating {config.name}", console=_stderr()):
         cfg, response = run_response(cfg)
     summary = response.summary()
@@ -117,6 +122,11 @@ def run_command(
                 write_outputs(response, out, config=cfg)
             except OSError as exc:
                 raise OutputError(f"cannot write the outputs to {out}: {exc}") from None
+        if animate:
+            from ..viz import animate as write_animation
+
+            with delayed_spinner("drawing the animation", console=_stderr()):
+                write_animation(response, out / "animation.gif")
     if as_json:
         sys.stdout.write(summary_json(summary) + "\n")
         if out is not None:
@@ -189,16 +199,19 @@ def info_command(
 
 # ----------------------------------------------------------------- extra commands
 def _register_optional_commands() -> None:
-    """Add commands that live in optional modules (``rocking paper``)."""
-    try:
-        from . import paper
-    except ImportError as exc:
-        if getattr(exc, "name", None) == f"{__package__}.paper":
-            return  # the module is not there: the CLI simply has no such command
-        # present but broken: keep the other commands working, and say why
-        warnings.warn(f"'rocking paper' is unavailable: {exc}", stacklevel=2)
-        return
-    paper.register(app)
+    """Add the commands that live in their own modules (each has ``register(app)``)."""
+    import importlib
+
+    for name in ("paper", "views", "studies", "serve"):
+        try:
+            module = importlib.import_module(f"{__package__}.{name}")
+        except ImportError as exc:
+            if getattr(exc, "name", None) == f"{__package__}.{name}":
+                continue  # the module is not there: the CLI simply has no such command
+            # present but broken: keep the other commands working, and say why
+            warnings.warn(f"'rocking {name}' commands are unavailable: {exc}", stacklevel=2)
+            continue
+        module.register(app)
 
 
 _register_optional_commands()

@@ -9,7 +9,7 @@ import os
 import shutil
 import uuid
 from pathlib import Path
-from typing import Optional
+from typing import Annotated
 
 import typer
 
@@ -27,12 +27,14 @@ def _publish(tmp: Path, out: Path) -> None:
 
 
 def paper(
-    out: Path = typer.Option(Path("paper-out"), "--out", help="Directory for the figures and tables."),
-    omega: Optional[float] = typer.Option(  # noqa: UP045 (typer needs Optional on 3.11)
-        None,
-        "--omega",
-        help="Angular frequency ω of A·cos ωt, 1/s (default 2π·1.2 = 7.5398; the paper prints 7.53).",
-    ),
+    out: Annotated[Path, typer.Option("--out", help="Directory for the figures and tables.")] = Path("paper-out"),
+    omega: Annotated[
+        float | None,
+        typer.Option(
+            "--omega",
+            help="Angular frequency ω of A·cos ωt, 1/s (default 2π·1.2 = 7.5398; the paper prints 7.53).",
+        ),
+    ] = None,
 ) -> None:
     """Rerun the paper's eight case studies (Table 2) in four variants each, write one figure per
     case (paper_fig_<case>.png), paper_outcomes.csv and paper_outcomes.md into --out, and print

@@ -90,12 +90,17 @@ def _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin):
     ``gmin`` receives the smallest values of the threshold guards at the interior stages."""
     for i in range(N_GUARDS):
         gmin[i] = np.inf
+    gmin[N_GUARDS] = 0.0
     for stage in range(1, dop853.N_STAGES):
         dop853.stage_input(y, K, h, stage, work)
         ts = t + dop853.C[stage] * h
         rhs(ts, work, p, sig, s, loc, K[stage])
         a, av = _ground(loc, ts)
         track_threshold_guards(p, sig, s, work, a, av, K[stage, 1], K[stage, 3], gmin)
+        # The friction the statue's base needs peaks between step ends: sample it at the stages.
+        px, py = statue_contact(p, s, work[2], work[3], a, av, K[stage, 1], K[stage, 3])
+        if py > 0.0:
+            gmin[N_GUARDS] = max(gmin[N_GUARDS], abs(px) / py)
     dop853.advance(y, K, h, y_new)
     rhs(t + h, y_new, p, sig, s, loc, K[dop853.FSAL])
 
@@ -242,7 +247,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
     g0 = np.empty(N_GUARDS)
     g1 = np.empty(N_GUARDS)
     gbuf = np.empty(N_GUARDS)
-    gmin = np.empty(N_GUARDS)
+    gmin = np.empty(N_GUARDS + 1)  # + the largest top-face friction ratio at the stages
     # An interior minimum of a threshold guard is searched for a sign change only when it comes
     # this close to zero (10 % of the guard's natural scale): the cost stays with grazing steps.
     near = np.full(N_GUARDS, -np.inf)
@@ -414,6 +419,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                 next_grid += 1
 
         if first < 0:
+            top_ratio = max(top_ratio, gmin[N_GUARDS])
             for j in range(N_STATE):
                 y[j] = y_new[j]
             t = t1
@@ -454,7 +460,8 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
             # Event: state at the event by a direct (5th-order) step, not the interpolant.
             te = t + x_first * h
             Ke[0, :] = K[0, :]
-            _step(t, y, te - t, Ke, work, ye, p, sig, s, loc, gbuf)
+            _step(t, y, te - t, Ke, work, ye, p, sig, s, loc, gmin)
+            top_ratio = max(top_ratio, gmin[N_GUARDS])  # stages up to the event only
             for j in range(N_STATE):
                 y[j] = ye[j]
             t = te
