@@ -8,9 +8,13 @@ derivation, with the corrections to the paper's Eqs. 18 and 21 (pitfalls P1–P4
     M(a_g + ü) + m2 R (c θ̈ + S s_φ θ̇²) = F                     (horizontal; paper Eq. 21b corrected)
     I_O θ̈ + m2 R c (a_g + ü) + S m2 R G s_φ = 0                  (rotation; paper Eqs. 5, 21a, 22)
     N = M G + m2 R (S s_φ θ̈ − c θ̇²)                              (floor normal force)
+    P = m2 (a_g + ü + R(c θ̈ + S s_φ θ̇²),  G + R(S s_φ θ̈ − c θ̇²))   (force on the statue's base)
 
 Regime codes: pedestal ``sig`` ∈ {0 stick, ±1 sliding towards ±x}; statue ``s`` ∈ {0 rest,
 ±1 rocking about its ±x corner}. State y = (u, u̇, θ, θ̇, W_in, D_friction).
+
+Each quantity has a ``_cs`` kernel taking c and s_φ, so the solver's hot path
+(:func:`evaluate_all`) computes the trigonometric functions once per evaluation.
 """
 
 from __future__ import annotations
@@ -23,18 +27,21 @@ from .parameters import ALPHA, B, CAN_SLIDE, G, I_O, M, M1, M2, MU_K, NORMAL_PAP
 
 
 @njit(cache=True)
-def accelerations(p, sig, s, u_dot, theta, theta_dot, a, av):
-    """(ü, θ̈, ok) in the regime (sig, s); ok is False when the sliding system is singular
-    (a Painlevé-type indeterminacy, possible only for μk ≥ 2/3 with a light pedestal)."""
+def _cs(p, s, theta):
+    if s == 0:
+        return 1.0, 0.0
+    phi = p[ALPHA] - s * theta
+    return math.cos(phi), math.sin(phi)
+
+
+@njit(cache=True)
+def _accelerations_cs(p, sig, s, theta_dot, a, av, c, sn):
     grav = p[G] + av
     if s == 0:
         if sig == 0:
             return 0.0, 0.0, True
         # Paper Eq. 23 (and Eq. 14 for a single block): the stack slides as one body.
         return -a - sig * p[MU_K] * grav, 0.0, True
-    phi = p[ALPHA] - s * theta
-    c = math.cos(phi)
-    sn = math.sin(phi)
     m2r = p[M2] * p[R]
     rhs_theta = -m2r * (c * a + s * sn * grav)
     if sig == 0:
@@ -58,19 +65,52 @@ def accelerations(p, sig, s, u_dot, theta, theta_dot, a, av):
 
 
 @njit(cache=True)
-def floor_forces(p, s, theta, theta_dot, a, av, udd, thdd):
-    """(F, N): horizontal force the floor must exert on the sliding body, and the normal force
-    (N), both N, from the momentum balance of the whole system (derivation §3.4)."""
+def _floor_forces_cs(p, s, theta_dot, a, av, udd, thdd, c, sn):
     grav = p[G] + av
     if s == 0:
         return p[M] * (a + udd), p[M] * grav
-    phi = p[ALPHA] - s * theta
-    c = math.cos(phi)
-    sn = math.sin(phi)
     m2r = p[M2] * p[R]
     f = p[M] * (a + udd) + m2r * (c * thdd + s * sn * theta_dot**2)
     n = p[M] * grav + m2r * (s * sn * thdd - c * theta_dot**2)
     return f, n
+
+
+@njit(cache=True)
+def _statue_contact_cs(p, s, theta_dot, a, av, udd, thdd, c, sn):
+    grav = p[G] + av
+    if s == 0:
+        return p[M2] * (a + udd), p[M2] * grav
+    px = p[M2] * (a + udd + p[R] * (c * thdd + s * sn * theta_dot**2))
+    py = p[M2] * (grav + p[R] * (s * sn * thdd - c * theta_dot**2))
+    return px, py
+
+
+@njit(cache=True)
+def _power_cs(p, sig, s, u_dot, theta_dot, a, av, n, c, sn):
+    if s == 0:
+        p_in = -a * p[M] * u_dot
+    else:
+        m2r = p[M2] * p[R]
+        p_in = -a * (p[M] * u_dot + m2r * c * theta_dot) - av * m2r * s * sn * theta_dot
+    if sig == 0 or p[CAN_SLIDE] < 0.5:
+        return p_in, 0.0
+    return p_in, p[MU_K] * friction_normal(p, n, av) * abs(u_dot)
+
+
+@njit(cache=True)
+def accelerations(p, sig, s, u_dot, theta, theta_dot, a, av):
+    """(ü, θ̈, ok) in the regime (sig, s); ok is False when the sliding system is singular
+    (a Painlevé-type indeterminacy, possible only for μk ≥ 2/3 with a light pedestal)."""
+    c, sn = _cs(p, s, theta)
+    return _accelerations_cs(p, sig, s, theta_dot, a, av, c, sn)
+
+
+@njit(cache=True)
+def floor_forces(p, s, theta, theta_dot, a, av, udd, thdd):
+    """(F, N): horizontal force the floor must exert on the sliding body, and the normal force
+    (N), both N, from the momentum balance of the whole system (derivation §3.4)."""
+    c, sn = _cs(p, s, theta)
+    return _floor_forces_cs(p, s, theta_dot, a, av, udd, thdd, c, sn)
 
 
 @njit(cache=True)
@@ -84,15 +124,29 @@ def friction_normal(p, n_full, av):
 @njit(cache=True)
 def statue_contact(p, s, theta, theta_dot, a, av, udd, thdd):
     """(P_x, P_y): force of the pedestal (or floor) on the statue at its base, N."""
-    grav = p[G] + av
-    if s == 0:
-        return p[M2] * (a + udd), p[M2] * grav
-    phi = p[ALPHA] - s * theta
-    c = math.cos(phi)
-    sn = math.sin(phi)
-    px = p[M2] * (a + udd + p[R] * (c * thdd + s * sn * theta_dot**2))
-    py = p[M2] * (grav + p[R] * (s * sn * thdd - c * theta_dot**2))
-    return px, py
+    c, sn = _cs(p, s, theta)
+    return _statue_contact_cs(p, s, theta_dot, a, av, udd, thdd, c, sn)
+
+
+@njit(cache=True)
+def power(p, sig, s, u_dot, theta, theta_dot, a, av, udd, thdd):
+    """(P_in, P_friction): power of the floor's inertial (d'Alembert) forces and the rate of
+    energy dissipated by floor friction, W."""
+    c, sn = _cs(p, s, theta)
+    _, n = _floor_forces_cs(p, s, theta_dot, a, av, udd, thdd, c, sn)
+    return _power_cs(p, sig, s, u_dot, theta_dot, a, av, n, c, sn)
+
+
+@njit(cache=True)
+def evaluate_all(p, sig, s, u_dot, theta, theta_dot, a, av):
+    """Everything the solver needs at one state, with one cos/sin:
+    (ü, θ̈, ok, F, N, P_x, P_y, P_in, P_friction)."""
+    c, sn = _cs(p, s, theta)
+    udd, thdd, ok = _accelerations_cs(p, sig, s, theta_dot, a, av, c, sn)
+    f, n = _floor_forces_cs(p, s, theta_dot, a, av, udd, thdd, c, sn)
+    px, py = _statue_contact_cs(p, s, theta_dot, a, av, udd, thdd, c, sn)
+    p_in, p_fric = _power_cs(p, sig, s, u_dot, theta_dot, a, av, n, c, sn)
+    return udd, thdd, ok, f, n, px, py, p_in, p_fric
 
 
 @njit(cache=True)
@@ -110,11 +164,8 @@ def mechanical_energy(p, s, u_dot, theta, theta_dot):
     """T + V relative to the floor, J; V = 0 with the statue upright (Eqs. 16–17)."""
     if s == 0:
         return 0.5 * p[M] * u_dot**2
-    phi = p[ALPHA] - s * theta
-    c = math.cos(phi)
-    m2r = p[M2] * p[R]
-    kinetic = 0.5 * p[M] * u_dot**2 + m2r * c * u_dot * theta_dot + 0.5 * p[I_O] * theta_dot**2
-    return kinetic + m2r * p[G] * (c - math.cos(p[ALPHA]))
+    c = math.cos(p[ALPHA] - s * theta)
+    return kinetic_energy(p, s, u_dot, theta, theta_dot) + p[M2] * p[R] * p[G] * (c - math.cos(p[ALPHA]))
 
 
 @njit(cache=True)
@@ -124,22 +175,6 @@ def kinetic_energy(p, s, u_dot, theta, theta_dot):
         return 0.5 * p[M] * u_dot**2
     c = math.cos(p[ALPHA] - s * theta)
     return 0.5 * p[M] * u_dot**2 + p[M2] * p[R] * c * u_dot * theta_dot + 0.5 * p[I_O] * theta_dot**2
-
-
-@njit(cache=True)
-def power(p, sig, s, u_dot, theta, theta_dot, a, av, udd, thdd):
-    """(P_in, P_friction): power of the floor's inertial (d'Alembert) forces and the rate of
-    energy dissipated by floor friction, W."""
-    if s == 0:
-        p_in = -a * p[M] * u_dot
-    else:
-        phi = p[ALPHA] - s * theta
-        m2r = p[M2] * p[R]
-        p_in = -a * (p[M] * u_dot + m2r * math.cos(phi) * theta_dot) - av * m2r * s * math.sin(phi) * theta_dot
-    if sig == 0 or p[CAN_SLIDE] < 0.5:
-        return p_in, 0.0
-    _, n = floor_forces(p, s, theta, theta_dot, a, av, udd, thdd)
-    return p_in, p[MU_K] * friction_normal(p, n, av) * abs(u_dot)
 
 
 @njit(cache=True)

@@ -33,24 +33,30 @@ N_GUARDS = 8
 @njit(cache=True)
 def evaluate_guards(p, sig, s, y, a, av, exceeded, out):
     """Fill ``out`` (length N_GUARDS) with the guard values; inactive guards are +1."""
+    udd, thdd, _ = accelerations(p, sig, s, y[1], y[2], y[3], a, av)
+    f, n = floor_forces(p, s, y[2], y[3], a, av, udd, thdd)
+    guards_from_forces(p, sig, s, y, a, av, udd, f, n, exceeded, out)
+
+
+@njit(cache=True)
+def guards_from_forces(p, sig, s, y, a, av, udd, f, n, exceeded, out):
+    """:func:`evaluate_guards` when ü and the floor forces (F, N) at y are already known."""
     for i in range(N_GUARDS):
         out[i] = 1.0
-    u_dot, theta, theta_dot = y[1], y[2], y[3]
-    udd, thdd, _ = accelerations(p, sig, s, u_dot, theta, theta_dot, a, av)
     if sig == 0:
         if p[CAN_SLIDE] > 0.5:
-            f, n = floor_forces(p, s, theta, theta_dot, a, av, udd, thdd)
             cap = p[MU_S] * friction_normal(p, n, av)
             out[SLIP_TO_NEGATIVE] = cap - f
             out[SLIP_TO_POSITIVE] = cap + f
     else:
-        out[STOP] = sig * u_dot
+        out[STOP] = sig * y[1]
     if s == 0:
         threshold = (p[G] + av) * math.tan(p[ALPHA])
         base = a + udd
         out[ROCK_TO_NEGATIVE] = threshold - base
         out[ROCK_TO_POSITIVE] = threshold + base
     else:
+        theta = y[2]
         out[IMPACT] = s * theta
         if not exceeded:
             out[EXCEED] = p[ALPHA] - abs(theta)
@@ -58,14 +64,13 @@ def evaluate_guards(p, sig, s, y, a, av, exceeded, out):
 
 
 @njit(cache=True)
-def track_threshold_guards(p, sig, s, y, a, av, udd, thdd, gmin):
+def track_threshold_guards(p, sig, s, y, a, av, udd, f, n, gmin):
     """Lower ``gmin`` to the values of the guards that follow the floor motion (friction cone,
-    rocking threshold, sliding velocity) at an interior state of a step, with its accelerations
-    already known. Such a guard can dip below zero and come back within one step; the end
-    points alone would miss it (scipy#9228)."""
+    rocking threshold, sliding velocity) at an interior state of a step, given its horizontal
+    acceleration ü and the floor forces (F, N) already computed there. Such a guard can dip below
+    zero and come back within one step; the end points alone would miss it (scipy#9228)."""
     if sig == 0:
         if p[CAN_SLIDE] > 0.5:
-            f, n = floor_forces(p, s, y[2], y[3], a, av, udd, thdd)
             cap = p[MU_S] * friction_normal(p, n, av)
             gmin[SLIP_TO_NEGATIVE] = min(gmin[SLIP_TO_NEGATIVE], cap - f)
             gmin[SLIP_TO_POSITIVE] = min(gmin[SLIP_TO_POSITIVE], cap + f)

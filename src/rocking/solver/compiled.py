@@ -14,9 +14,10 @@ import numpy as np
 from numba import njit
 
 from ..contact.impact import friction_ratio, impact_coulomb, impact_paper
-from ..excitation.signal import LOCAL_SIZE, local_value, localise
+from ..excitation.signal import LOCAL_LINEAR, LOCAL_SIZE, local_value, localise
 from ..integrators import dop853
 from ..models.dynamics import (
+    evaluate_all,
     accelerations,
     floor_forces,
     kinetic_energy,
@@ -35,6 +36,7 @@ from ..models.modes import (
     ROCK_TO_POSITIVE,
     STOP,
     evaluate_guards,
+    guards_from_forces,
     select_regime,
     track_threshold_guards,
 )
@@ -54,6 +56,7 @@ EV_IMPACT, EV_SLIP, EV_STOP, EV_UPLIFT, EV_EXCEED, EV_FALL, EV_SETTLE, EV_BREAKP
 N_EVENT_FIELDS = 10  # t, kind, regime before, regime after, u̇⁻, u̇⁺, θ̇⁻, θ̇⁺, energy lost, friction ratio
 
 N_STATE = 6  # u, u̇, θ, θ̇, input work W, friction dissipation D
+N_DIAG = 7  # extra right-hand-side outputs: a_g, a_v, F, N, P_x, P_y, ok (not integrated)
 
 
 @njit(cache=True)
@@ -73,9 +76,16 @@ def _ground(loc, t):
 
 @njit(cache=True)
 def rhs(t, y, p, sig, s, loc, out):
+    """dy/dt into ``out``; out[6:] receives (a_g, a_v, F, N, P_x, P_y, ok) for guards and checks."""
     a, av = _ground(loc, t)
-    udd, thdd, _ = accelerations(p, sig, s, y[1], y[2], y[3], a, av)
-    p_in, p_fric = power(p, sig, s, y[1], y[2], y[3], a, av, udd, thdd)
+    udd, thdd, ok, f, n, px, py, p_in, p_fric = evaluate_all(p, sig, s, y[1], y[2], y[3], a, av)
+    out[12] = 1.0 if ok else 0.0
+    out[6] = a
+    out[7] = av
+    out[8] = f
+    out[9] = n
+    out[10] = px
+    out[11] = py
     out[0] = y[1]
     out[1] = udd
     out[2] = y[3]
@@ -95,12 +105,10 @@ def _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin):
         dop853.stage_input(y, K, h, stage, work)
         ts = t + dop853.C[stage] * h
         rhs(ts, work, p, sig, s, loc, K[stage])
-        a, av = _ground(loc, ts)
-        track_threshold_guards(p, sig, s, work, a, av, K[stage, 1], K[stage, 3], gmin)
+        track_threshold_guards(p, sig, s, work, K[stage, 6], K[stage, 7], K[stage, 1], K[stage, 8], K[stage, 9], gmin)
         # The friction the statue's base needs peaks between step ends: sample it at the stages.
-        px, py = statue_contact(p, s, work[2], work[3], a, av, K[stage, 1], K[stage, 3])
-        if py > 0.0:
-            gmin[N_GUARDS] = max(gmin[N_GUARDS], abs(px) / py)
+        if K[stage, 11] > 0.0:
+            gmin[N_GUARDS] = max(gmin[N_GUARDS], abs(K[stage, 10]) / K[stage, 11])
     dop853.advance(y, K, h, y_new)
     rhs(t + h, y_new, p, sig, s, loc, K[dop853.FSAL])
 
@@ -175,22 +183,12 @@ def _minimum(p, sig, s, y0, F, h, loc, t0, exceeded, work, gbuf, index):
             lo, x1, f1 = x1, x2, f2
             x2 = lo + ratio * (hi - lo)
             f2 = _guard_at(p, sig, s, y0, F, h, x2, loc, t0, exceeded, work, gbuf, index)
-        if (hi - lo) * h < 1e-12:
+        if hi - lo < 1e-7:
             break
     if f1 <= 0.0:
         return x1
     if f2 <= 0.0:
         return x2
-    return -1.0
-
-
-@njit(cache=True)
-def _first_nonpositive(p, sig, s, y0, F, h, loc, t0, exceeded, work, gbuf, index):
-    """The first of 64 points of the step where guard ``index`` is ≤ 0, or −1."""
-    for k in range(1, 64):
-        x = k / 64.0
-        if _guard_at(p, sig, s, y0, F, h, x, loc, t0, exceeded, work, gbuf, index) <= 0.0:
-            return x
     return -1.0
 
 
@@ -229,6 +227,41 @@ def _theta_dot_root(y0, F, work):
 
 
 @njit(cache=True)
+def _cross_breakpoint(p, y, sig, s, t, t_end, ib, breakpoints, sig_h, sig_v, loc, loc_next, events, n_ev, max_events,
+                      indeterminate):
+    """At a breakpoint of the floor motion — a sample time of a record (continuous) or a jump
+    (pulse start or end) — move ``loc`` to the next piece and re-select the regime.
+    Returns (ib, t_stop, sig, s, fresh, n_ev, indeterminate)."""
+    nb = breakpoints.shape[0]
+    ib += 1
+    t_stop = min(breakpoints[ib], t_end) if ib < nb else t_end
+    _localise(sig_h, sig_v, t + 0.5 * (t_stop - t), loc_next)
+    a, av = _ground(loc_next, t)
+    a_old, av_old = _ground(loc, t)
+    for j in range(2 * LOCAL_SIZE):
+        loc[j] = loc_next[j]
+    sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
+    if not ok:
+        indeterminate += 1
+    if sig2 != sig or s2 != s:
+        if n_ev < max_events:
+            events[n_ev, 0] = t
+            events[n_ev, 1] = EV_BREAKPOINT
+            events[n_ev, 2] = _regime(sig, s)
+            events[n_ev, 3] = _regime(sig2, s2)
+            events[n_ev, 4] = y[1]
+            events[n_ev, 5] = y[1]
+            events[n_ev, 6] = y[3]
+            events[n_ev, 7] = y[3]
+            events[n_ev, 8] = 0.0
+            events[n_ev, 9] = 0.0
+            n_ev += 1
+    jump = abs(a - a_old) + abs(av - av_old) > 1e-12 * (abs(a) + abs(av) + p[G])
+    fresh = jump or sig2 != sig or s2 != s
+    return ib, t_stop, sig2, s2, fresh, n_ev, indeterminate
+
+
+@njit(cache=True)
 def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_step, save_dt, save, max_events):
     """Integrate the hybrid system from t0 to t_end.
 
@@ -241,20 +274,20 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
     y_new = np.empty(N_STATE)
     work = np.empty(N_STATE)
     ye = np.empty(N_STATE)
-    K = np.empty((dop853.N_K, N_STATE))
-    Ke = np.empty((dop853.N_K, N_STATE))
+    K = np.empty((dop853.N_K, N_STATE + N_DIAG))
+    Ke = np.empty((dop853.N_K, N_STATE + N_DIAG))
     F = np.empty((dop853.INTERPOLATOR_POWER, N_STATE))
     g0 = np.empty(N_GUARDS)
     g1 = np.empty(N_GUARDS)
     gbuf = np.empty(N_GUARDS)
     gmin = np.empty(N_GUARDS + 1)  # + the largest top-face friction ratio at the stages
     # An interior minimum of a threshold guard is searched for a sign change only when it comes
-    # this close to zero (10 % of the guard's natural scale): the cost stays with grazing steps.
+    # this close to zero (3 % of the guard's natural scale): the cost stays with grazing steps.
     near = np.full(N_GUARDS, -np.inf)
     if p[CAN_SLIDE] > 0.5:
-        near[0] = near[1] = 0.1 * p[MU_S] * p[M] * p[G]
+        near[0] = near[1] = 0.03 * p[MU_S] * p[M] * p[G]
         near[STOP] = 1e-3
-    near[3] = near[4] = 0.1 * p[G] * math.tan(p[ALPHA])
+    near[3] = near[4] = 0.03 * p[G] * math.tan(p[ALPHA])
     armed = np.ones(N_GUARDS, dtype=np.bool_)
 
     n_grid = int(math.floor((t_end - t0) / save_dt + 1e-9)) + 1 if save else 0
@@ -318,6 +351,37 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
             for i in range(N_GUARDS):
                 armed[i] = g0[i] > 0.0
             fresh = False
+        if sig == 0 and s == 0 and loc[0] <= LOCAL_LINEAR and loc[LOCAL_SIZE] <= LOCAL_LINEAR:
+            # At rest under a piecewise-linear floor motion (a record between two samples) the
+            # guards are linear in time: if they are positive at both ends nothing happens in
+            # between, and the interval is crossed without integrating (a statue at rest costs
+            # almost nothing per sample).
+            a1, av1 = _ground(loc, t_stop)
+            evaluate_guards(p, 0, 0, y, a1, av1, exceeded, g1)
+            quiet = True
+            for i in range(N_GUARDS):
+                if not (g0[i] > 0.0 and g1[i] > 0.0):
+                    quiet = False
+            if quiet:
+                if save:
+                    while next_grid < n_grid and n_out < cap:
+                        tg = t0 + next_grid * save_dt
+                        if tg > t_stop + 1e-12:
+                            break
+                        t_out[n_out] = tg
+                        y_out[n_out, :] = y[:4]
+                        r_out[n_out] = 0
+                        n_out += 1
+                        next_grid += 1
+                t = t_stop
+                for i in range(N_GUARDS):
+                    g0[i] = g1[i]
+                if t < t_end:
+                    ib, t_stop, sig, s, fresh, n_ev, indeterminate = _cross_breakpoint(
+                        p, y, sig, s, t, t_end, ib, breakpoints, sig_h, sig_v, loc, loc_next, events, n_ev,
+                        max_events, indeterminate,
+                    )
+                continue
         h = min(h, max_step, t_stop - t)
         # Avoid a sliver of a step before a breakpoint.
         if t_stop - (t + h) < 1e-3 * h:
@@ -340,8 +404,8 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
             t1 = t_stop
 
         # Guards at the end of the step (same piece of the motion as the step).
-        a1, av1 = _ground(loc, t1)
-        evaluate_guards(p, sig, s, y_new, a1, av1, exceeded, g1)
+        kf = K[dop853.FSAL]  # the right-hand side at (t1, y_new), with its forces
+        guards_from_forces(p, sig, s, y_new, kf[6], kf[7], kf[1], kf[8], kf[9], exceeded, g1)
         # The dense output costs three more right-hand sides: build it only when this step
         # holds an event candidate, a turning point of θ or a saved sample.
         need_dense = s != 0 and (y[3] > 0.0) != (y_new[3] > 0.0)
@@ -360,9 +424,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                     # The guard has an interior minimum (seen at a stage): it may dip below
                     # zero and come back inside this step. Find the minimum on the dense output
                     # and the first crossing before it.
-                    x_neg = _first_nonpositive(p, sig, s, y, F, h, loc, t, exceeded, work, gbuf, i)
-                    if x_neg < 0.0:
-                        x_neg = _minimum(p, sig, s, y, F, h, loc, t, exceeded, work, gbuf, i)
+                    x_neg = _minimum(p, sig, s, y, F, h, loc, t, exceeded, work, gbuf, i)
                     if x_neg > 0.0:
                         g_neg = _guard_at(p, sig, s, y, F, h, x_neg, loc, t, exceeded, work, gbuf, i)
                         x = _locate(p, sig, s, y, F, h, loc, t, exceeded, work, gbuf, i, g0[i], g_neg, 0.0, x_neg)
@@ -428,34 +490,13 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                 if g1[i] > 0.0:
                     armed[i] = True
             for j in range(N_STATE):
-                K[0, j] = K[dop853.FSAL, j]
+                K[0, j] = K[dop853.FSAL, j]  # FSAL
             h = h * min(10.0, max(0.2, 0.9 * err ** (-dop853.ERROR_EXPONENT))) if err > 0 else 10.0 * h
             if t >= t_stop and t < t_end:
-                # A breakpoint of the floor motion: a sample time of a record (continuous) or a
-                # jump (pulse start/end), where the regime may change.
-                ib += 1
-                t_stop = min(breakpoints[ib], t_end) if ib < nb else t_end
-                _localise(sig_h, sig_v, t + 0.5 * (t_stop - t), loc_next)
-                a, av = _ground(loc_next, t)
-                a_old, av_old = _ground(loc, t)
-                for j in range(2 * LOCAL_SIZE):
-                    loc[j] = loc_next[j]
-                sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
-                if not ok:
-                    indeterminate += 1
-                if sig2 != sig or s2 != s:
-                    if n_ev < max_events:
-                        events[n_ev, 0] = t
-                        events[n_ev, 1] = EV_BREAKPOINT
-                        events[n_ev, 2] = _regime(sig, s)
-                        events[n_ev, 3] = _regime(sig2, s2)
-                        events[n_ev, 4:8] = np.array([y[1], y[1], y[3], y[3]])
-                        events[n_ev, 8:] = 0.0
-                        n_ev += 1
-                jump = abs(a - a_old) + abs(av - av_old) > 1e-12 * (abs(a) + abs(av) + p[G])
-                if jump or sig2 != sig or s2 != s:
-                    fresh = True
-                sig, s = sig2, s2
+                ib, t_stop, sig, s, fresh, n_ev, indeterminate = _cross_breakpoint(
+                    p, y, sig, s, t, t_end, ib, breakpoints, sig_h, sig_v, loc, loc_next, events, n_ev, max_events,
+                    indeterminate,
+                )
         else:
             # Event: state at the event by a direct (5th-order) step, not the interpolant.
             te = t + x_first * h
@@ -562,19 +603,20 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
         # Checks at the new point: extremes, energy balance, the model's assumptions.
         peak_theta = max(peak_theta, abs(y[2]))
         peak_u = max(peak_u, abs(y[0]))
-        a, av = _ground(loc, t)
-        udd, thdd, ok = accelerations(p, sig, s, y[1], y[2], y[3], a, av)
+        if fresh:
+            a, av = _ground(loc, t)
+            udd, thdd, ok, _, n_full, px, py, _, _ = evaluate_all(p, sig, s, y[1], y[2], y[3], a, av)
+        else:  # K[0] already holds the right-hand side at (t, y) (FSAL)
+            a, udd, ok, n_full, px, py = K[0, 6], K[0, 1], K[0, 12] > 0.5, K[0, 9], K[0, 10], K[0, 11]
         if not ok:
             status = STATUS_SINGULAR
             break
         e = mechanical_energy(p, s, y[1], y[2], y[3])
         energy_scale = max(energy_scale, abs(e), abs(y[4]), abs(y[5]))
         balance = max(balance, abs(e - e0 - y[4] + y[5] + d_impact))
-        px, py = statue_contact(p, s, y[2], y[3], a, av, udd, thdd)
         if py > 0.0:
             top_ratio = max(top_ratio, abs(px) / py)
         if s != 0:
-            _, n_full = floor_forces(p, s, y[2], y[3], a, av, udd, thdd)
             if n_full <= 0.0:
                 if math.isnan(summ[S_N_NONPOSITIVE]):
                     summ[S_N_NONPOSITIVE] = t

@@ -5,14 +5,25 @@ equations of motion (``models.dynamics.accelerations``), the same guards
 (``models.modes.evaluate_guards``), the same regime selection (``models.modes.select_regime``)
 and the same impact laws (``contact.impact``) — but with different numerics:
 
-* smooth segments by :func:`scipy.integrate.solve_ivp` with the 8th-order Dormand–Prince method
-  (``DOP853``), instead of the compiled Dormand–Prince 5(4);
-* events located by SciPy: every active guard is a separate event function (terminal,
-  direction −1) and SciPy brackets its sign change over a step and solves it with Brent's
-  method on the 7th-order dense output; the compiled solver uses the Illinois method on the
-  4th-order interpolant and then a direct step to the event;
+* smooth segments by :func:`scipy.integrate.solve_ivp` with its ``DOP853`` (Hairer's 8(5,3)
+  Dormand–Prince pair, SciPy's step-size control and 7th-order dense output), not the compiled
+  solver's own Runge–Kutta code;
+* events located by SciPy: every guard that can end the current regime is a separate event
+  function (terminal, direction −1); SciPy brackets its sign change over a step and solves it
+  with Brent's method on the dense output. The compiled solver uses its own root finder and
+  its own tests for grazing guards. Here, in addition, the guards are sampled on the dense
+  output inside every step (spacing ≤ ``GUARD_DT`` = 1 ms, at least 4 samples per step), so that
+  a guard that dips below zero and comes back within one step — SciPy only compares the signs
+  at the two ends of a step — is not missed (``diagnostics["events_found_by_sampling"]``);
 * the floor acceleration is evaluated by a plain-Python version of each signal kind (the
-  compiled ``excitation.signal.evaluate`` is only a fallback for kinds not listed here).
+  compiled ``excitation.signal.evaluate`` is only a fallback for kinds not listed here);
+* |θ| peaks from a non-terminal θ̇ = 0 event.
+
+The *model* rules are the compiled solver's, applied at the same instants: the guards of
+``evaluate_guards``, ``select_regime`` at t0, after every event (with ``forbid_stick`` after a
+slip and ``forbid_rest`` after an uplift) and at every breakpoint, the impact laws, the
+``rest_velocity`` settle rule, the EXCEED/FALL bookkeeping, and a regime counting as "entered"
+(first rocking/sliding time) only once it lasts a positive time.
 
 It is slow (a Python call per right-hand-side evaluation, one ``solve_ivp`` call per segment)
 and meant for cross-checking the compiled core in tests and benchmarks, not for production runs.
@@ -40,15 +51,21 @@ ignores roots at the start.
 What is done here: ``select_regime`` only returns a regime whose guards are non-negative and
 *leave zero upwards* (it checks the sign of the first non-vanishing derivative: σ·ü > 0 for a
 slip that starts, S·θ̈ > 0 for a rocking that starts, S·θ̇ > 0 after an impact). So for each guard
-that is ≤ 0 at the segment start, its value *at exactly the start time* is replaced by its
-right-hand limit's sign, a tiny positive number. Then a guard that rises and falls back within
-the first step is bracketed and located properly (g > 0 at the start, ≤ 0 at the step end), and
-one that stays positive never fires. If such a guard nevertheless "fires" at the start itself
-(within ``64 ulp`` of it: the regime was not really consistent, e.g. ``select_regime`` reported
-no consistent choice), that event is not applied: the guard is disarmed for a short probe
-interval (``min(max_step, 1e-3 s)``), after which the guards are evaluated afresh — the compiled
-solver similarly ignores a non-positive guard until it has been seen positive. Such cases are
-counted in ``diagnostics["ignored_start_events"]``.
+that is exactly 0 at the segment start (mode ZERO), its value *at exactly the start time* is
+replaced by a tiny positive number (its right-hand limit's sign). Then a guard that rises and
+falls back within the first step is bracketed and located properly (g > 0 at the start, ≤ 0 at
+the step end), and one that stays positive never fires. The other cases:
+
+* a guard that "fires" within 64 ulp of the start although it was ZERO (a tie that
+  ``select_regime`` resolved with a tolerance, or no consistent regime): a friction-cone or
+  rocking-threshold guard then ends its regime at once, at the start (an immediate SLIP or
+  UPLIFT event, as the compiled solver does for such a guard that stays negative over its first
+  step); any other guard (STOP, IMPACT) is ignored until it has come back above zero — it is
+  then watched as a direction +1 "arming" event, and the integration restarts there with the
+  guard armed. Counted in ``diagnostics["ignored_start_events"]``;
+* a guard that is < 0 at the start (the selected regime is not consistent): a threshold guard
+  ends its regime at once (``diagnostics["immediate_events"]``; if several, the last in guard
+  order, as in the compiled loop); any other guard is armed only once it comes back up.
 
 Peaks
 -----
@@ -438,7 +455,7 @@ def integrate_reference(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, a
             st["peak_theta"] = max(st["peak_theta"], abs(y[2]))
             st["peak_u"] = max(st["peak_u"], abs(y[0]))
 
-            if fired >= 0 and modes[fired] == DISARMED:
+            if fired >= 0 and sol is not None and modes[fired] == DISARMED:
                 # A disarmed guard came back up through zero: restart here with it watched.
                 override = {fired: ZERO}
                 continue
