@@ -216,3 +216,21 @@ def test_required_top_friction_of_a_statue_at_rest_is_the_largest_transmitted_ac
     r = rk.simulate(on_pedestal(st), rk.Harmonic(amplitude=6.75, frequency=1.2, cycles=1), options=OPTS)
     assert r.summary()["first_rocking_time"] is None
     assert r.summary()["required_top_friction"] == pytest.approx(0.4, abs=1e-9)
+
+
+def test_violation_intervals_agree_with_the_first_times_in_the_summary():
+    st = rk.Statue(width=0.4, height=2.0, mass=50.0, friction=rk.Friction(static=0.2, kinetic=0.2))
+    ped = rk.Pedestal(mass=5.0, friction=rk.Friction(static=0.6, kinetic=0.5), width=0.5, height=0.8)
+    r = rk.simulate(rk.System(statue=st, pedestal=ped), rk.Harmonic(amplitude=6.0, frequency=1.0, cycles=4),
+                    options=rk.Options(gravity=G, save_dt=1e-3))
+    found = {name for name, _, _ in r.violations()}
+    assert {"statue slips on the pedestal", "pedestal uplift"} <= found
+    first_slip = min(t0 for name, t0, _ in r.violations() if name == "statue slips on the pedestal")
+    from rocking.solver import compiled as C
+    # The solver checks at its steps and stages, the intervals use the 1 ms samples.
+    assert first_slip == pytest.approx(r.raw_summary[C.S_TOP_SLIP], abs=0.05)
+    forces = r.contact_forces()
+    # Vertical balance of the whole stack at rest instants: N = M g.
+    rest = r.regime == Regime.REST
+    if rest.any():
+        np.testing.assert_allclose(forces["N"][rest], 55.0 * G, rtol=1e-12)

@@ -202,6 +202,62 @@ class Response:
         out["warnings"] = self.warnings
         return out
 
+    # -- the model's assumptions along the run (derivation §3.5) ---------------------------
+    def _regime_signs(self):
+        th, thd, ud = self.theta, self.theta_dot, self.u_dot
+        sig = np.where(np.isin(self.regime, (Regime.SLIDE, Regime.SLIDE_ROCK)), np.sign(ud), 0).astype(int)
+        rock = np.isin(self.regime, (Regime.ROCK, Regime.SLIDE_ROCK))
+        s = np.where(rock, np.where(th != 0, np.sign(th), np.sign(thd)), 0).astype(int)
+        return sig, s
+
+    def contact_forces(self) -> dict[str, np.ndarray]:
+        """Forces at the saved times, N: the floor's normal force ``N`` and friction ``F`` on the
+        body that slides, the force ``Px``, ``Py`` on the statue's base, the friction ratio
+        |Px|/Py the statue's base needs, and the floor pressure centre ``x_N`` under the pedestal
+        (m, NaN without pedestal height)."""
+        from ..models.dynamics import evaluate_all, pressure_centre
+
+        p = self.parameters
+        sig, s = self._regime_signs()
+        a_g = self.floor_acceleration
+        a_v = self.motion.vertical_acceleration(self.t)
+        n = self.t.size
+        out = {k: np.empty(n) for k in ("F", "N", "Px", "Py", "x_N")}
+        for i in range(n):
+            udd, _, _, f, nn, px, py, _, _ = evaluate_all(
+                p, int(sig[i]), int(s[i]), self.u_dot[i], self.theta[i], self.theta_dot[i], a_g[i], a_v[i]
+            )
+            out["F"][i], out["N"][i], out["Px"][i], out["Py"][i] = f, nn, px, py
+            out["x_N"][i] = pressure_centre(p, int(s[i]), a_g[i], udd, px, py, nn) if s[i] else np.nan
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out["top_friction_ratio"] = np.where(out["Py"] > 0, np.abs(out["Px"]) / out["Py"], np.inf)
+        return out
+
+    def violations(self) -> list[tuple[str, float, float]]:
+        """Intervals (check, t_start, t_end) of the saved time series where an assumption of the
+        model fails while the statue rocks: the floor normal force ≤ 0, the statue's base force
+        ≤ 0 (lift-off), the statue slipping on the pedestal (when the top face's friction is
+        given), the pedestal uplifting (when its width and height are given)."""
+        forces = self.contact_forces()
+        rocking = np.isin(self.regime, (Regime.ROCK, Regime.SLIDE_ROCK))
+        checks = {
+            "floor normal force ≤ 0": forces["N"] <= 0,
+            "statue lift-off (base force ≤ 0)": forces["Py"] <= 0,
+        }
+        top = self.system.top_friction
+        if top is not None:
+            checks["statue slips on the pedestal"] = forces["top_friction_ratio"] > top.mu_s
+        ped = self.system.pedestal
+        if ped is not None and ped.width is not None and ped.height is not None:
+            checks["pedestal uplift"] = np.abs(np.nan_to_num(forces["x_N"])) > 0.5 * ped.width
+        out = []
+        for name, flag in checks.items():
+            flag = flag & rocking
+            edges = np.flatnonzero(np.diff(np.concatenate([[0], flag.astype(np.int8), [0]])))
+            for start, stop in zip(edges[::2], edges[1::2]):
+                out.append((name, float(self.t[start]), float(self.t[stop - 1])))
+        return sorted(out, key=lambda v: v[1])
+
     # -- key point kinematics (paper Eqs. 7–13) --------------------------------------------
     def key_point(self, x: float, y: float) -> dict[str, np.ndarray]:
         """Motion of a point P of the statue, given at rest by (x, y) in m from the centre of
@@ -217,9 +273,7 @@ class Response:
         th, thd, ud = self.theta, self.theta_dot, self.u_dot
         a_g = self.floor_acceleration
         a_v = self.motion.vertical_acceleration(self.t)
-        sig = np.where(np.isin(self.regime, (Regime.SLIDE, Regime.SLIDE_ROCK)), np.sign(ud), 0).astype(int)
-        rock = np.isin(self.regime, (Regime.ROCK, Regime.SLIDE_ROCK))
-        s = np.where(rock, np.where(th != 0, np.sign(th), np.sign(thd)), 0).astype(int)
+        sig, s = self._regime_signs()
         udd = np.zeros_like(th)
         thdd = np.zeros_like(th)
         for i in range(th.size):
