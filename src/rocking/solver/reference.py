@@ -582,6 +582,7 @@ def simulate_reference(
     initial_angular_velocity: float = 0.0,
     initial_sliding_velocity: float = 0.0,
     save_dt: float | None = 0.01,
+    save: bool = True,
 ) -> dict:
     """Simulate ``system`` on ``motion`` with the SciPy reference solver.
 
@@ -600,6 +601,7 @@ def simulate_reference(
         ``overturned`` (bool), ``overturn_time``, ``exceeded_alpha_time`` (s or None),
         ``peak_rotation`` (rad), ``peak_sliding``, ``residual_sliding`` (m), ``status``,
         ``first_rocking_time``, ``first_sliding_time``, ``end_time``, ``diagnostics``.
+        With ``save=False`` the time series are empty (for timing runs).
     """
     t_end = motion.duration if duration is None else float(duration)
     if not math.isfinite(t_end) or t_end <= 0:
@@ -613,7 +615,7 @@ def simulate_reference(
              rest_velocity=options.rest_velocity)
     y0 = np.array([0.0, initial_sliding_velocity, initial_rotation, initial_angular_velocity], dtype=float)
     raw = integrate_reference(p, motion.signal(), motion.vertical_signal(), _breakpoints(motion, 0.0, t_end), 0.0,
-                              t_end, y0, options.rtol, options.atol, options.max_step, float(save_dt), True,
+                              t_end, y0, options.rtol, options.atol, options.max_step, float(save_dt), bool(save),
                               int(options.max_events))
     table = raw["event_table"]
     rows = [(float(r[0]), EventKind(int(r[1])), Regime(int(r[2])), Regime(int(r[3]))) for r in table]
