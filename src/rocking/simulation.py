@@ -47,7 +47,7 @@ class Options:
     impact: str = "coulomb"
     rtol: float = 1e-10
     atol: float = 1e-12
-    max_step: float = 0.05
+    max_step: float = 0.1
     rest_velocity: float = 1e-6
     save_dt: float | None = None
     max_events: int = 100_000

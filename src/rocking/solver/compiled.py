@@ -104,11 +104,21 @@ def _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin):
     for stage in range(1, dop853.N_STAGES):
         dop853.stage_input(y, K, h, stage, work)
         ts = t + dop853.C[stage] * h
-        rhs(ts, work, p, sig, s, loc, K[stage])
-        track_threshold_guards(p, sig, s, work, K[stage, 6], K[stage, 7], K[stage, 1], K[stage, 8], K[stage, 9], gmin)
+        # The right-hand side written out here rather than called: in this innermost loop a
+        # function call per stage costs as much as the physics itself.
+        a = local_value(loc, 0, ts)
+        av = local_value(loc, LOCAL_SIZE, ts)
+        udd, thdd, ok, f, n, px, py, p_in, p_fric = evaluate_all(p, sig, s, work[1], work[2], work[3], a, av)
+        K[stage, 0] = work[1]
+        K[stage, 1] = udd
+        K[stage, 2] = work[3]
+        K[stage, 3] = thdd
+        K[stage, 4] = p_in
+        K[stage, 5] = p_fric
+        track_threshold_guards(p, sig, s, work, a, av, udd, f, n, gmin)
         # The friction the statue's base needs peaks between step ends: sample it at the stages.
-        if K[stage, 11] > 0.0:
-            gmin[N_GUARDS] = max(gmin[N_GUARDS], abs(K[stage, 10]) / K[stage, 11])
+        if py > 0.0:
+            gmin[N_GUARDS] = max(gmin[N_GUARDS], abs(px) / py)
     dop853.advance(y, K, h, y_new)
     rhs(t + h, y_new, p, sig, s, loc, K[dop853.FSAL])
 
