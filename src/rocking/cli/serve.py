@@ -1,0 +1,45 @@
+"""``rocking serve``: the local web app (:mod:`rocking.web`).
+
+``register(app)`` adds the command to the typer application of :mod:`rocking.cli.main`.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+import typer
+
+__all__ = ["register", "serve"]
+
+
+def serve(
+    host: Annotated[
+        str, typer.Option("--host", help="Address to listen on; 0.0.0.0 opens the app to the network (no accounts).")
+    ] = "127.0.0.1",
+    port: Annotated[int, typer.Option("--port", help="TCP port (0: any free port).", min=0, max=65535)] = 8000,
+    timeout: Annotated[
+        float, typer.Option("--timeout", help="Longest run (simulation, plots, animation), s.")
+    ] = 120.0,
+    sweep_timeout: Annotated[float, typer.Option("--sweep-timeout", help="Longest friction design sweep, s.")] = 600.0,
+    max_upload_mb: Annotated[float, typer.Option("--max-upload-mb", help="Largest uploaded record, MB.")] = 5.0,
+) -> None:
+    """Serve the web page: choose or upload a record, describe the statue and pedestal, run, and see
+    the verdict, animation and plots; run a friction design sweep and download its report.
+    Stop with Ctrl+C."""
+    from ..web.server import serve as run_server
+    from ..web.server import settings_from
+
+    try:
+        settings = settings_from(timeout, sweep_timeout, max_upload_mb)
+    except ValueError as exc:
+        name, _, message = str(exc).partition(" ")
+        raise typer.BadParameter(message, param_hint=name) from None
+    try:
+        run_server(host, port, settings)
+    except OSError as exc:
+        raise typer.BadParameter(f"cannot listen on {host}:{port}: {exc.strerror or exc}", param_hint="--port") from None
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``serve`` command to ``app``."""
+    app.command("serve")(serve)

@@ -1,0 +1,598 @@
+"""The Flask application: the input form, the run and sweep pages, the files they show.
+
+Build it with :func:`create_app`; serve it with :func:`rocking.web.server.serve` (``rocking serve``).
+Every computation runs in a worker process with a time limit (:mod:`rocking.web.jobs`); the request
+thread only validates the form, reads an uploaded record to check it, and renders the page.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import math
+import re
+import shutil
+import tempfile
+import threading
+import uuid
+import weakref
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+from urllib.parse import urlsplit
+
+from flask import Flask, abort, jsonify, redirect, render_template, request, send_from_directory, url_for
+from jinja2 import DictLoader
+from werkzeug.exceptions import HTTPException, RequestEntityTooLarge
+from werkzeug.utils import secure_filename
+
+from .. import __version__
+from ..constants import STANDARD_GRAVITY
+from ..io.config import ConfigError, load_config
+from ..io.records import RecordError, bundled_records, read_record
+from . import tasks
+from .jobs import DONE, JobRunner
+from .templates import TEMPLATES
+
+__all__ = ["DEFAULTS", "FormError", "create_app", "parse_form"]
+
+log = logging.getLogger("rocking.web")
+
+#: Settings of :func:`create_app` (override any of them with its ``settings`` argument).
+DEFAULTS: dict[str, Any] = {
+    "RUN_TIMEOUT": 120.0,  # s, one run (simulation, plots and animation)
+    "SWEEP_TIMEOUT": 600.0,  # s, one design sweep with its report
+    "MAX_UPLOAD": 5 * 1024 * 1024,  # bytes of an uploaded record
+    "MAX_SWEEP_POINTS": 41,
+    "MAX_WORKERS": None,  # worker processes at once (default max(4, CPUs))
+    "QUEUE_TIMEOUT": 60.0,  # s a job waits for a free worker
+    "KEEP_RUNS": 200,  # run and sweep folders kept on disk (oldest removed first)
+    "WORK_DIR": None,  # where runs are written (default: a temporary folder, removed at exit)
+    "ANIMATION": {"fps": 10, "longest_video": 20.0, "dpi": 60},
+    "FIGURE_DPI": 90,
+    "ALLOWED_HOSTS": None,  # Host names accepted (None: any); serve() sets the loopback names
+    "MP_CONTEXT": "forkserver",
+}
+
+_FORM_DEFAULTS = {
+    "record": "Northridge1994_RinaldiReceivingSta_228",
+    "format": "",
+    "units": "",
+    "scale_kind": "factor",
+    "scale_value": "0.4",
+    "duration": "",
+    "statue_width": "0.3",
+    "statue_height": "1.2",
+    "statue_mass": "100",
+    "statue_restitution": "0.85",
+    "statue_mu_s": "0.5",
+    "statue_mu_k": "0.4",
+    "pedestal": "",
+    "pedestal_mass": "50",
+    "pedestal_mu_s": "0.3",
+    "pedestal_mu_k": "0.22",
+    "pedestal_width": "0.6",
+    "pedestal_height": "0.4",
+    "sweep_from": "0.05",
+    "sweep_to": "0.6",
+    "sweep_points": "12",
+    "sweep_sliding_limit": "",
+}
+
+_FORMATS = [("", "detect"), ("peer", "PEER AT2"), ("esm", "ESM ASCII"), ("two-column", "two-column text")]
+_UNITS = [("", "from the file"), ("g", "g"), ("cm/s2", "cm/s² (gal)"), ("m/s2", "m/s²"), ("mm/s2", "mm/s²")]
+_SCALE_KINDS = [("factor", "factor ×"), ("pga_g", "target PGA (g)"), ("pga", "target PGA (m/s²)")]
+
+#: Form labels of the configuration fields, for error messages.
+_LABELS = {
+    "statue.width": "statue width B",
+    "statue.height": "statue height H",
+    "statue.mass": "statue mass",
+    "statue.restitution": "statue restitution r",
+    "statue.friction.static": "statue friction μs",
+    "statue.friction.kinetic": "statue friction μk",
+    "statue.friction": "statue friction",
+    "statue": "statue",
+    "pedestal.mass": "pedestal mass",
+    "pedestal.friction.static": "pedestal floor friction μs",
+    "pedestal.friction.kinetic": "pedestal floor friction μk",
+    "pedestal.friction": "pedestal floor friction",
+    "pedestal.width": "pedestal width",
+    "pedestal.height": "pedestal height",
+    "pedestal": "pedestal",
+    "motion.scale": "scale factor",
+    "motion.pga": "target PGA",
+    "motion.path": "record",
+    "motion.units": "units of the file",
+    "motion.format": "file format",
+    "motion": "floor motion",
+    "simulation.duration": "duration",
+}
+
+_RUN_FILES = {"response.png", "energy.png", "animation.gif", "result.json"}
+_SWEEP_FILES = {"report.html", "report.pdf", "sweep.csv", "sweep.png", "sweep-report.zip"}
+_ID_RE = re.compile(r"^[0-9a-f]{32}$")
+
+
+class FormError(ValueError):
+    """A problem with the form's values; the message is shown on the page as is."""
+
+
+# ----------------------------------------------------------------------------------- the form
+def _text(form: Mapping[str, Any], name: str) -> str:
+    return str(form.get(name, "") or "").strip()
+
+
+def _number(form: Mapping[str, Any], name: str, label: str, problems: list[str], *, required: bool) -> float | None:
+    raw = _text(form, name)
+    if not raw:
+        if required:
+            problems.append(f"{label}: required")
+        return None
+    try:
+        value = float(raw.replace(",", ".")) if raw.count(",") == 1 and "." not in raw else float(raw)
+    except ValueError:
+        problems.append(f"{label}: enter a number, got {raw!r}")
+        return None
+    if not math.isfinite(value):
+        problems.append(f"{label}: must be a finite number, got {raw!r}")
+        return None
+    return value
+
+
+def _friction(form: Mapping[str, Any], prefix: str, label: str, problems: list[str], *, required: bool):
+    mu_s = _number(form, f"{prefix}_mu_s", f"{label} μs", problems, required=required)
+    mu_k = _number(form, f"{prefix}_mu_k", f"{label} μk", problems, required=False)
+    if mu_s is None:
+        if mu_k is not None:
+            problems.append(f"{label} μk: give μs too")
+        return None
+    out: dict[str, float] = {"static": mu_s}
+    if mu_k is not None:
+        out["kinetic"] = mu_k
+    return out
+
+
+def parse_form(form: Mapping[str, Any], record_path: str | None = None) -> dict[str, Any]:
+    """The run configuration (a dict for :func:`rocking.io.config.load_config`) of the form.
+
+    Parameters
+    ----------
+    form : mapping
+        The submitted fields (see ``_FORM_DEFAULTS`` for the names).
+    record_path : str, optional
+        An uploaded record saved on disk; replaces the bundled record of the form.
+
+    Raises
+    ------
+    FormError
+        One line naming every field that is missing or not a number.
+    """
+    problems: list[str] = []
+    statue: dict[str, Any] = {}
+    for key, label in (("width", "statue width B"), ("height", "statue height H"), ("mass", "statue mass")):
+        statue[key] = _number(form, f"statue_{key}", label, problems, required=True)
+    r = _number(form, "statue_restitution", "statue restitution r", problems, required=False)
+    if r is not None:
+        statue["restitution"] = r
+    fr = _friction(form, "statue", "statue friction", problems, required=False)
+    if fr is not None:
+        statue["friction"] = fr
+    cfg: dict[str, Any] = {"statue": statue}
+
+    if _text(form, "pedestal"):
+        ped: dict[str, Any] = {"mass": _number(form, "pedestal_mass", "pedestal mass", problems, required=True)}
+        ped["friction"] = _friction(form, "pedestal", "pedestal floor friction", problems, required=True)
+        for key in ("width", "height"):
+            v = _number(form, f"pedestal_{key}", f"pedestal {key}", problems, required=False)
+            if v is not None:
+                ped[key] = v
+        cfg["pedestal"] = ped
+
+    motion: dict[str, Any] = {"kind": "record"}
+    if record_path is not None:
+        motion["path"] = record_path
+    else:
+        name = _text(form, "record")
+        if not name:
+            problems.append("record: choose a bundled record or upload a file")
+        elif name not in bundled_records():
+            problems.append(f"record: {name!r} is not a bundled record")
+        motion["path"] = name
+    kind = _text(form, "scale_kind") or "factor"
+    value = _number(form, "scale_value", "scale value", problems, required=False)
+    if kind not in {k for k, _ in _SCALE_KINDS}:
+        problems.append(f"scale by: unknown choice {kind!r}")
+    elif value is not None:
+        if kind == "factor":
+            motion["scale"] = value
+        elif kind == "pga_g":
+            motion["pga"] = value * STANDARD_GRAVITY  # the unit g, as the record readers use it
+        else:
+            motion["pga"] = value
+    for key, choices in (("units", _UNITS), ("format", _FORMATS)):
+        v = _text(form, key)
+        if v and v not in {c for c, _ in choices}:
+            problems.append(f"{key}: unknown choice {v!r}")
+        elif v:
+            motion[key] = v
+    cfg["motion"] = motion
+    duration = _number(form, "duration", "duration", problems, required=False)
+    if duration is not None:
+        cfg["simulation"] = {"duration": duration}
+    if problems:
+        raise FormError("; ".join(problems))
+    return cfg
+
+
+def parse_sweep(form: Mapping[str, Any], max_points: int) -> tuple[list[float], float | None]:
+    """The pedestal frictions μs of the design sweep (evenly spaced, both ends included) and the
+    largest acceptable sliding of the pedestal (m, or None)."""
+    problems: list[str] = []
+    limit_mm = _number(form, "sweep_sliding_limit", "sweep sliding limit", problems, required=False)
+    if limit_mm is not None and not limit_mm > 0:
+        problems.append(f"sweep sliding limit: must be > 0 mm, got {limit_mm:g}")
+    lo = _number(form, "sweep_from", "sweep μs from", problems, required=True)
+    hi = _number(form, "sweep_to", "sweep μs to", problems, required=True)
+    raw = _text(form, "sweep_points")
+    n = None
+    if not raw:
+        problems.append("sweep values: required")
+    elif not raw.isdigit():
+        problems.append(f"sweep values: enter a whole number, got {raw!r}")
+    else:
+        n = int(raw)
+        if not 2 <= n <= max_points:
+            problems.append(f"sweep values: must be between 2 and {max_points}, got {n}")
+    if lo is not None and lo < 0:
+        problems.append(f"sweep μs from: must be >= 0, got {lo:g}")
+    if lo is not None and hi is not None and not hi > lo:
+        problems.append(f"sweep μs to: must be greater than μs from ({lo:g}), got {hi:g}")
+    if problems:
+        raise FormError("; ".join(problems))
+    return [lo + (hi - lo) * i / (n - 1) for i in range(n)], (None if limit_mm is None else limit_mm / 1000.0)
+
+
+def _config_message(exc: ConfigError, hide: str | None) -> str:
+    parts = []
+    for fld, msg in exc.problems:
+        label = _LABELS.get(fld or "", fld)
+        parts.append(f"{label}: {msg}" if label else msg)
+    return _hide_path(" ".join("; ".join(parts).split()), hide)
+
+
+def _hide_path(message: str, folder: str | None) -> str:
+    """Show an uploaded file by its name, not by the server's temporary folder."""
+    if folder:
+        message = message.replace(folder.rstrip("/") + "/", "")
+    return message
+
+
+# ---------------------------------------------------------------------------- the summary
+def _t(x: Any) -> str:
+    return "—" if x is None else f"{x:.3f} s"
+
+
+def _num(x: Any, fmt: str = ".4g") -> str:
+    if x is None or (isinstance(x, float) and not math.isfinite(x)):
+        return "—"
+    return format(x, fmt)
+
+
+def summary_rows(s: Mapping[str, Any]) -> list[tuple[str, str, str, str]]:
+    """(id, label, text, JSON value) of each summary number shown on the result page."""
+    ratio = s.get("peak_rotation_over_alpha")
+    rows = [
+        ("overturned", "overturned", f"yes, at {_t(s['overturn_time'])}" if s["overturned"] else "no"),
+        ("overturn_time", "overturn time", _t(s["overturn_time"])),
+        ("exceeded_alpha_time", "|θ| first exceeded α", _t(s["exceeded_alpha_time"])),
+        ("peak_rotation", "peak rotation", f"{_num(s['peak_rotation'])} rad"),
+        ("peak_rotation_over_alpha", "peak rotation / α", _num(ratio, ".3f")),
+        ("peak_sliding", "peak sliding", f"{_num(1e3 * s['peak_sliding'], '.2f')} mm"),
+        ("residual_sliding", "residual sliding", f"{_num(1e3 * s['residual_sliding'], '.2f')} mm"),
+        ("impacts", "impacts", str(s["impacts"])),
+        ("first_rocking_time", "rocking started", _t(s["first_rocking_time"])),
+        ("first_sliding_time", "sliding started", _t(s["first_sliding_time"])),
+        ("required_top_friction", "friction needed under the statue", _num(s["required_top_friction"], ".3f")),
+        ("impact_floor_friction_needed", "friction needed at impacts", _num(s.get("impact_floor_friction_needed"), ".3f")),
+        ("end_time", "simulated until", _t(s.get("end_time"))),
+        ("status", "status", str(s.get("status"))),
+        ("energy_balance_error", "energy balance error", _num(s.get("energy_balance_error"), ".1e")),
+    ]
+    return [(k, label, text, json.dumps(s.get(k))) for k, label, text in rows]
+
+
+def _page_result(run_id: str, result: Mapping[str, Any]) -> dict[str, Any]:
+    s = result["summary"]
+    klass = "fails" if s["overturned"] else ("safe" if s.get("status") == "completed" else "stopped")
+    return {**result, "id": run_id, "rows": summary_rows(s), "verdict_class": klass}
+
+
+# ------------------------------------------------------------------------------- the state
+class _State:
+    """What the app keeps between requests: settings, the job runner, the work folder."""
+
+    def __init__(self, settings: Mapping[str, Any]):
+        self.settings = dict(settings)
+        work = settings["WORK_DIR"]
+        if work is None:
+            self.work_dir = Path(tempfile.mkdtemp(prefix="rocking-web-"))
+            self._cleanup = weakref.finalize(self, shutil.rmtree, str(self.work_dir), True)
+        else:
+            self.work_dir = Path(work)
+            self.work_dir.mkdir(parents=True, exist_ok=True)
+            self._cleanup = None
+        (self.work_dir / "runs").mkdir(exist_ok=True)
+        (self.work_dir / "sweeps").mkdir(exist_ok=True)
+        self.runner = JobRunner(
+            settings["MAX_WORKERS"], queue_timeout=float(settings["QUEUE_TIMEOUT"]), context=settings["MP_CONTEXT"]
+        )
+        self._lock = threading.Lock()
+        self.records = sorted(bundled_records())
+        self.forms: dict[str, dict[str, str]] = {}  # the inputs of each sweep, to go back to them
+
+    def new_dir(self, kind: str) -> tuple[str, Path]:
+        run_id = uuid.uuid4().hex
+        path = self.work_dir / kind / run_id
+        path.mkdir(parents=True)
+        self._prune(kind)
+        return run_id, path
+
+    def _prune(self, kind: str) -> None:
+        keep = int(self.settings["KEEP_RUNS"])
+        with self._lock:
+            dirs = sorted((self.work_dir / kind).iterdir(), key=lambda p: p.stat().st_mtime)
+            for old in dirs[:-keep] if len(dirs) > keep else []:
+                job = self.runner.get(old.name)
+                if job is None or job.finished_flag:
+                    shutil.rmtree(old, ignore_errors=True)
+                    self.forms.pop(old.name, None)
+
+    def shutdown(self) -> None:
+        self.runner.shutdown()
+        if self._cleanup is not None:
+            self._cleanup()
+
+
+def _state(app: Flask) -> _State:
+    return app.extensions["rocking"]
+
+
+def _megabytes(n: int) -> str:
+    return f"{n / 1024 / 1024:g} MB" if n >= 1024 * 1024 else f"{n / 1024:g} kB"
+
+
+# -------------------------------------------------------------------------------- the app
+def create_app(settings: Mapping[str, Any] | None = None) -> Flask:
+    """Build the web app.
+
+    Parameters
+    ----------
+    settings : mapping, optional
+        Overrides of :data:`DEFAULTS`: ``RUN_TIMEOUT`` and ``SWEEP_TIMEOUT`` (s), ``MAX_UPLOAD``
+        (bytes), ``MAX_SWEEP_POINTS``, ``MAX_WORKERS``, ``WORK_DIR``, ``ANIMATION``,
+        ``ALLOWED_HOSTS`` ...
+
+    Returns
+    -------
+    flask.Flask
+        ``app.extensions["rocking"].shutdown()`` stops its workers and removes its files.
+    """
+    cfg = {**DEFAULTS, **(settings or {})}
+    app = Flask("rocking.web")
+    app.jinja_loader = DictLoader(TEMPLATES)
+    # the whole request: the record plus the other fields
+    app.config["MAX_CONTENT_LENGTH"] = int(cfg["MAX_UPLOAD"]) + 256 * 1024
+    state = _State(cfg)
+    app.extensions["rocking"] = state
+
+    def page(status: int = 200, *, form: Mapping[str, Any] | None = None, **kw: Any):
+        values = dict(_FORM_DEFAULTS)
+        if form is not None:
+            values.update({k: _text(form, k) for k in _FORM_DEFAULTS if k in form})
+            values["pedestal"] = _text(form, "pedestal")  # an unticked box is not sent
+        html = render_template(
+            "index.html",
+            form=values,
+            records=state.records,
+            formats=_FORMATS,
+            units=_UNITS,
+            scale_kinds=_SCALE_KINDS,
+            max_upload=_megabytes(int(cfg["MAX_UPLOAD"])),
+            max_sweep_points=int(cfg["MAX_SWEEP_POINTS"]),
+            timeout=f"{float(cfg['RUN_TIMEOUT']):g}",
+            **kw,
+        )
+        return html, status
+
+    @app.context_processor
+    def _version() -> dict[str, Any]:
+        return {"version": __version__}
+
+    @app.before_request
+    def _guard():
+        allowed = cfg["ALLOWED_HOSTS"]
+        if allowed:
+            host = request.headers.get("Host", "")
+            name = host[1 : host.find("]")] if host.startswith("[") else host.rsplit(":", 1)[0]
+            if name.lower() not in {h.lower() for h in allowed}:
+                abort(400, description=f"unexpected Host header {host!r}")
+        if request.method == "POST":
+            origin = request.headers.get("Origin")
+            if origin and origin != "null" and urlsplit(origin).netloc != request.host:
+                abort(403, description="cross-site form submissions are refused")
+
+    @app.errorhandler(RequestEntityTooLarge)
+    def _too_large(exc):
+        return page(
+            413, error_title="Upload refused",
+            error=f"the upload is larger than the limit of {_megabytes(int(cfg['MAX_UPLOAD']))}",
+        )
+
+    @app.errorhandler(HTTPException)
+    def _http_error(exc):
+        if request.method == "GET" and exc.code == 404:
+            return page(404, error_title="Not found", error="there is no such page (old runs are removed)")
+        return page(exc.code or 500, error_title=exc.name, error=exc.description or exc.name)
+
+    @app.errorhandler(Exception)
+    def _unexpected(exc):
+        log.exception("unexpected error in %s %s", request.method, request.path)
+        return page(500, error_title="Unexpected error",
+                    error=f"unexpected {type(exc).__name__}: {exc} (the server log has the details)")
+
+    # ---------------------------------------------------------------- validation helpers
+    def prepare(kind: str, folder: Path) -> tuple[dict[str, Any], str | None]:
+        """Read the form and the upload (saved in ``folder``) into a config dict; raises FormError,
+        RecordError or ConfigError with messages for the page."""
+        upload = request.files.get("upload")
+        record_path = None
+        if upload is not None and upload.filename:
+            upload_dir = folder / "upload"
+            upload_dir.mkdir()
+            name = secure_filename(upload.filename) or "record.txt"
+            path = upload_dir / name
+            upload.save(path)
+            size = path.stat().st_size
+            if size == 0:
+                raise FormError(f"the uploaded file {name} is empty")
+            if size > int(cfg["MAX_UPLOAD"]):
+                raise RequestEntityTooLarge()
+            record_path = str(path)
+        config = parse_form(request.form, record_path)
+        if record_path is not None:
+            # the reader's own checks, with its message naming the file and the line
+            read_record(record_path, format=config["motion"].get("format"), units=config["motion"].get("units"))
+        load_config(config)  # every other problem, named by field, before a worker starts
+        return config, record_path
+
+    def validated(kind: str):
+        """((id, folder, config, upload folder or None), None), or (None, (title, message))."""
+        run_id, folder = state.new_dir(kind)
+        upload_dir = str(folder / "upload")
+        try:
+            config, record_path = prepare(kind, folder)
+        except BaseException as exc:
+            shutil.rmtree(folder, ignore_errors=True)
+            if isinstance(exc, RecordError):
+                return None, ("Cannot read the record", _hide_path(" ".join(str(exc).split()), upload_dir))
+            if isinstance(exc, ConfigError):
+                return None, ("Invalid input", _config_message(exc, upload_dir))
+            if isinstance(exc, ValueError):  # FormError, or e.g. an unknown format from the reader
+                return None, ("Invalid input", _hide_path(" ".join(str(exc).split()), upload_dir))
+            raise
+        return (run_id, folder, config, upload_dir if record_path else None), None
+
+    # ------------------------------------------------------------------------- routes
+    @app.get("/")
+    def index():
+        return page()
+
+    @app.get("/healthz")
+    def healthz():
+        return {"status": "ok", "version": __version__, "active_workers": state.runner.active()}
+
+    @app.post("/run")
+    def run():
+        prepared, problem = validated("runs")
+        if problem is not None:
+            return page(400, form=request.form, error_title=problem[0], error=problem[1])
+        run_id, folder, config, upload_dir = prepared
+        job = state.runner.run(
+            tasks.run_task,
+            {"config": config, "out_dir": str(folder), "animation": cfg["ANIMATION"], "dpi": int(cfg["FIGURE_DPI"])},
+            timeout=float(cfg["RUN_TIMEOUT"]),
+            kind="run",
+            job_id=run_id,
+        )
+        if upload_dir:
+            shutil.rmtree(upload_dir, ignore_errors=True)
+        if job.state != DONE:
+            status = {"timeout": 504, "busy": 503, "internal": 500}.get(job.error_kind or "", 400)
+            title = {"timeout": "Run stopped", "busy": "Server busy"}.get(job.error_kind or "", "The run failed")
+            return page(status, form=request.form, error_title=title, error=_hide_path(job.error or "", upload_dir))
+        return page(form=request.form, result=_page_result(run_id, job.result))
+
+    @app.get("/runs/<run_id>")
+    def show_run(run_id: str):
+        path = _folder("runs", run_id) / "result.json"
+        if not path.is_file():
+            abort(404)
+        result = json.loads(path.read_text(encoding="utf-8"))
+        return render_template("run.html", result=_page_result(run_id, result))
+
+    @app.get("/runs/<run_id>/<name>")
+    def run_file(run_id: str, name: str):
+        if name not in _RUN_FILES:
+            abort(404)
+        return send_from_directory(_folder("runs", run_id), name, max_age=3600)
+
+    @app.post("/sweep")
+    def start_sweep():
+        prepared, problem = validated("sweeps")
+        frictions, sliding_limit = None, None
+        if problem is None:
+            try:
+                if "pedestal" not in prepared[2]:
+                    raise FormError(
+                        "the design sweep varies the pedestal's floor friction: tick "
+                        "'the statue stands on a pedestal' and describe the pedestal"
+                    )
+                frictions, sliding_limit = parse_sweep(request.form, int(cfg["MAX_SWEEP_POINTS"]))
+            except FormError as exc:
+                problem = ("Invalid input", str(exc))
+        if problem is not None:
+            return page(400, form=request.form, error_title=problem[0], error=problem[1])
+        job_id, folder, config, upload_dir = prepared
+        state.forms[job_id] = {k: _text(request.form, k) for k in _FORM_DEFAULTS if k in request.form}
+        state.forms[job_id]["pedestal"] = "on"
+        state.runner.start(
+            tasks.sweep_task,
+            {"config": config, "frictions": frictions, "sliding_limit": sliding_limit, "out_dir": str(folder),
+             "dpi": int(cfg["FIGURE_DPI"])},
+            timeout=float(cfg["SWEEP_TIMEOUT"]),
+            kind="sweep",
+            job_id=job_id,
+            on_done=(lambda job: shutil.rmtree(upload_dir, ignore_errors=True)) if upload_dir else None,
+        )
+        return redirect(url_for("show_sweep", job_id=job_id), code=303)
+
+    def _job(job_id: str):
+        job = state.runner.get(job_id) if _ID_RE.match(job_id) else None
+        if job is None or job.kind != "sweep":
+            abort(404)
+        return job
+
+    @app.get("/sweeps/<job_id>")
+    def show_sweep(job_id: str):
+        job = _job(job_id)
+        return render_template("sweep.html", job=job, finished=job.finished_flag)
+
+    @app.get("/sweeps/<job_id>/inputs")
+    def sweep_inputs(job_id: str):
+        _job(job_id)
+        return page(form=state.forms.get(job_id, {}))
+
+    @app.get("/sweeps/<job_id>/status")
+    def sweep_status(job_id: str):
+        resp = jsonify(_job(job_id).status())
+        resp.headers["Cache-Control"] = "no-store"
+        return resp
+
+    @app.get("/sweeps/<job_id>/files/<name>")
+    def sweep_file(job_id: str, name: str):
+        job = _job(job_id)
+        if name not in _SWEEP_FILES or job.state != DONE:
+            abort(404)
+        return send_from_directory(_folder("sweeps", job_id), name, as_attachment=name != "report.html")
+
+    def _folder(kind: str, run_id: str) -> Path:
+        if not _ID_RE.match(run_id):
+            abort(404)
+        path = state.work_dir / kind / run_id
+        if not path.is_dir():
+            abort(404)
+        return path
+
+    return app
+

@@ -1,0 +1,409 @@
+"""The web app at the server level (Flask's test client): forms, uploads, runs, limits, sweeps.
+
+The browser tests (tests/test_browser.py) drive the same app in headless Chromium.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import re
+import threading
+import time
+import zipfile
+from html import unescape
+
+import pytest
+
+pytest.importorskip("flask")
+
+from rocking.io.records import bundled_records  # noqa: E402
+from rocking.report import verdict  # noqa: E402
+from rocking.runner import run_response  # noqa: E402
+from rocking.web.app import create_app  # noqa: E402
+
+RECORD = "Northridge1994_RinaldiReceivingSta_228"
+
+#: The inputs of examples/statue_alone_record.toml as the form sends them.
+FORM = {
+    "record": RECORD,
+    "scale_kind": "factor",
+    "scale_value": "0.4",
+    "statue_width": "0.3",
+    "statue_height": "1.2",
+    "statue_mass": "100",
+    "statue_restitution": "0.85",
+    "statue_mu_s": "0.5",
+    "statue_mu_k": "0.4",
+}
+CONFIG = {
+    "statue": {"width": 0.3, "height": 1.2, "mass": 100.0, "restitution": 0.85,
+               "friction": {"static": 0.5, "kinetic": 0.4}},
+    "motion": {"kind": "record", "path": RECORD, "scale": 0.4},
+}
+PEDESTAL = {"pedestal": "on", "pedestal_mass": "50", "pedestal_mu_s": "0.3", "pedestal_mu_k": "0.22"}
+
+FAST = {"ANIMATION": {"fps": 4, "longest_video": 4.0, "dpi": 40}, "FIGURE_DPI": 40}
+
+
+def short_record(units_header: bool = True, seconds: float = 3.0) -> bytes:
+    """A two-column record: one sine cycle of 0.5 g at 1 Hz, then rest, sampled at 100 Hz."""
+    import math
+
+    lines = ["synthetic test record", "Time[s] Accel[g]" if units_header else "time accel"]
+    n = int(seconds * 100) + 1
+    for i in range(n):
+        t = i / 100
+        a = 0.5 * math.sin(2 * math.pi * t) if t <= 1.0 else 0.0
+        lines.append(f"{t:.2f} {a:.6f}")
+    return ("\n".join(lines) + "\n").encode()
+
+
+def malformed_peer() -> bytes:
+    """A PEER AT2 file whose second data line (line 6) holds a word that is not a number."""
+    return (
+        "PEER NGA STRONG MOTION DATABASE RECORD\n"
+        "TEST, 01/01/2000, Nowhere, 000\n"
+        "ACCELERATION TIME HISTORY IN UNITS OF G\n"
+        "NPTS=   10, DT=   .0100 SEC,\n"
+        "  .1  .2  .3  .4  .5\n"
+        "  .1  <b>oops</b>  .3  .4  .5\n"
+    ).encode()
+
+
+@pytest.fixture(scope="module")
+def app(tmp_path_factory):
+    app = create_app({**FAST, "RUN_TIMEOUT": 120, "MAX_UPLOAD": 64 * 1024,
+                      "WORK_DIR": str(tmp_path_factory.mktemp("web"))})
+    yield app
+    app.extensions["rocking"].shutdown()
+
+
+@pytest.fixture()
+def client(app):
+    return app.test_client()
+
+
+def text_of(html: str, element_id: str) -> str:
+    m = re.search(rf'<(\w+)[^>]*\bid="{element_id}"[^>]*>(.*?)</\1>', html, re.S)
+    assert m, f"no element #{element_id} in the page"
+    return " ".join(unescape(re.sub(r"<[^>]+>", "", m.group(2))).split())
+
+
+def values_of(html: str) -> dict:
+    return {k: json.loads(unescape(v)) for k, v in re.findall(r'<td id="(\w+)" data-value="([^"]*)"', html)}
+
+
+def upload(data: bytes, name: str, **fields):
+    form = {**FORM, **fields}
+    form["upload"] = (io.BytesIO(data), name)
+    return form
+
+
+# -------------------------------------------------------------------------------- the page
+def test_index_offers_the_bundled_records(client):
+    r = client.get("/")
+    assert r.status_code == 200
+    html = r.get_data(as_text=True)
+    for name in bundled_records():
+        assert f'<option value="{name}"' in html
+    for field in ("statue_width", "statue_height", "statue_mass", "pedestal_mass", "pedestal_mu_s", "upload",
+                  "scale_value", "sweep_points"):
+        assert f'name="{field}"' in html
+    assert 'id="error"' not in html
+
+
+def test_health(client):
+    assert client.get("/healthz").get_json()["status"] == "ok"
+
+
+# ------------------------------------------------------------------------------------ runs
+def test_bundled_record_run_shows_the_api_verdict_and_summary(client):
+    r = client.post("/run", data=FORM)
+    html = r.get_data(as_text=True)
+    assert r.status_code == 200, text_of(html, "error")
+    _, response = run_response(CONFIG)
+    expected = response.summary()
+    assert text_of(html, "verdict") == verdict(response)
+    shown = values_of(html)
+    for key in ("overturned", "impacts", "status", "overturn_time", "first_sliding_time"):
+        assert shown[key] == expected[key], key
+    for key in ("peak_rotation", "peak_rotation_over_alpha", "peak_sliding", "first_rocking_time",
+                "required_top_friction", "end_time"):
+        assert shown[key] == pytest.approx(expected[key], rel=1e-9, abs=1e-12), key
+    assert "0.563" in text_of(html, "peak_rotation_over_alpha")
+    # the pictures are served
+    for element, kind in (("animation", "image/gif"), ("response-plot", "image/png"), ("energy-plot", "image/png")):
+        src = re.search(rf'id="{element}"[^>]*src="([^"]+)"', html).group(1)
+        pic = client.get(src)
+        assert pic.status_code == 200 and pic.mimetype == kind and len(pic.data) > 1000
+    # the form keeps the inputs, and the permalink shows the same verdict
+    assert 'name="scale_value" type="text" inputmode="decimal" value="0.4"' in html
+    assert 'name="pedestal_mass" type="text" inputmode="decimal" value="50"' in html  # not sent: default
+    link = re.search(r'id="permalink" href="([^"]+)"', html).group(1)
+    again = client.get(link)
+    assert again.status_code == 200 and text_of(again.get_data(as_text=True), "verdict") == verdict(response)
+
+
+def test_pedestal_and_pga_scaling(client):
+    form = {**FORM, **PEDESTAL, "scale_kind": "pga_g", "scale_value": "0.3", "duration": "8"}
+    r = client.post("/run", data=form)
+    html = r.get_data(as_text=True)
+    assert r.status_code == 200, text_of(html, "error")
+    assert "= 0.300 g" in html  # PGA after scaling
+    assert "pedestal" in text_of(html, "verdict") or "overturns" in text_of(html, "verdict")
+    assert values_of(html)["end_time"] == pytest.approx(8.0)
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        ({"statue_width": ""}, "statue width B: required"),
+        ({"statue_height": "tall"}, "statue height H: enter a number, got 'tall'"),
+        ({"statue_width": "-1"}, "statue width B: must be > 0"),
+        ({"statue_mu_s": "", "statue_mu_k": "0.3"}, "statue friction μk: give μs too"),
+        ({"statue_mu_s": "0.3", "statue_mu_k": "0.5"}, "statue friction μk: must be <= static"),
+        ({"scale_value": "nan"}, "scale value: must be a finite number"),
+        ({"scale_value": "0"}, "scale factor: must be > 0"),
+        ({"record": "NoSuchRecord"}, "record: 'NoSuchRecord' is not a bundled record"),
+        ({"pedestal": "on", "pedestal_mass": "50"}, "pedestal floor friction μs: required"),
+    ],
+)
+def test_form_errors_name_the_field(client, change, message):
+    r = client.post("/run", data={**FORM, **change})
+    html = r.get_data(as_text=True)
+    assert r.status_code == 400
+    assert message in text_of(html, "error")
+    assert "Traceback" not in html and 'id="verdict"' not in html
+
+
+def test_malformed_upload_shows_the_readers_error(client):
+    r = client.post("/run", data=upload(malformed_peer(), "bad.AT2"), content_type="multipart/form-data")
+    html = r.get_data(as_text=True)
+    assert r.status_code == 400
+    error = text_of(html, "error")
+    assert "Cannot read the record" in error
+    assert "bad.AT2: line 6: cannot parse '<b>oops</b>' as a number" in error
+    assert "<b>oops</b>" not in html  # escaped, not markup
+    assert "Traceback" not in html and "/upload/" not in html  # no server paths either
+
+
+def test_upload_without_units_then_with_units(client):
+    r = client.post("/run", data=upload(short_record(units_header=False), "pulse.txt"),
+                    content_type="multipart/form-data")
+    assert r.status_code == 400
+    assert "pulse.txt: the file does not state its units" in text_of(r.get_data(as_text=True), "error")
+    r = client.post("/run", data=upload(short_record(units_header=False), "pulse.txt", units="g", scale_value="2"),
+                    content_type="multipart/form-data")
+    html = r.get_data(as_text=True)
+    assert r.status_code == 200, text_of(html, "error")
+    assert "= 1.000 g" in html  # a 0.5 g pulse scaled by 2
+
+
+def test_uploaded_record_runs(client):
+    form = upload(short_record(), "pulse.dat", scale_value="1")
+    r = client.post("/run", data=form, content_type="multipart/form-data")
+    html = r.get_data(as_text=True)
+    assert r.status_code == 200, text_of(html, "error")
+    assert "= 0.500 g" in html and "3.00 s" in html  # PGA and length of the uploaded record
+    assert values_of(html)["end_time"] <= 3.0 + 1e-9
+    assert text_of(html, "verdict").startswith("The statue ")
+
+
+def test_empty_upload(client):
+    r = client.post("/run", data=upload(b"", "empty.AT2"), content_type="multipart/form-data")
+    assert r.status_code == 400
+    assert "the uploaded file empty.AT2 is empty" in text_of(r.get_data(as_text=True), "error")
+
+
+def test_upload_too_large(client):
+    big = short_record() * 40  # > 64 kB
+    r = client.post("/run", data=upload(big, "big.dat"), content_type="multipart/form-data")
+    assert r.status_code == 413
+    assert "the upload is larger than the limit of 64 kB" in text_of(r.get_data(as_text=True), "error")
+
+
+def test_a_run_over_the_time_limit_is_stopped(tmp_path):
+    app = create_app({**FAST, "RUN_TIMEOUT": 0.05, "WORK_DIR": str(tmp_path)})
+    try:
+        r = app.test_client().post("/run", data=FORM)
+        html = r.get_data(as_text=True)
+        assert r.status_code == 504
+        assert "the run took longer than 0.05 s and was stopped" in text_of(html, "error")
+        assert "Traceback" not in html
+        assert app.extensions["rocking"].runner.active() == 0  # the worker was terminated
+    finally:
+        app.extensions["rocking"].shutdown()
+
+
+def test_requests_do_not_block_each_other(app):
+    runner = app.extensions["rocking"].runner
+    results: dict[str, object] = {}
+
+    def run(key: str) -> None:
+        results[key] = app.test_client().post("/run", data=FORM)
+
+    threads = [threading.Thread(target=run, args=(k,)) for k in ("a", "b")]
+    for t in threads:
+        t.start()
+    end = time.monotonic() + 30
+    peak = 0
+    while time.monotonic() < end and peak < 2 and any(t.is_alive() for t in threads):
+        peak = max(peak, runner.active())
+        time.sleep(0.005)
+    # while both runs compute, other requests are answered at once
+    t0 = time.monotonic()
+    page = app.test_client().get("/")
+    bad = app.test_client().post("/run", data={**FORM, "statue_width": "x"})
+    quick = time.monotonic() - t0
+    busy = any(t.is_alive() for t in threads)
+    for t in threads:
+        t.join(60)
+    assert peak == 2, "the two runs did not compute at the same time"
+    assert page.status_code == 200 and bad.status_code == 400
+    assert busy and quick < 2.0
+    ids = set()
+    for key in ("a", "b"):
+        html = results[key].get_data(as_text=True)
+        assert results[key].status_code == 200, text_of(html, "error")
+        ids.add(re.search(r'id="permalink" href="/runs/(\w+)"', html).group(1))
+    assert len(ids) == 2
+
+
+# ----------------------------------------------------------------------------------- sweep
+def test_design_sweep_reports_progress_and_its_report(client):
+    form = {**FORM, **PEDESTAL, "duration": "6", "sweep_from": "0.1", "sweep_to": "0.4", "sweep_points": "4"}
+    r = client.post("/sweep", data=form)
+    assert r.status_code == 303
+    page = r.headers["Location"]
+    seen = []
+    end = time.monotonic() + 120
+    while time.monotonic() < end:
+        s = client.get(page + "/status").get_json()
+        seen.append((s["done"], s["total"]))
+        if s["state"] not in ("queued", "running"):
+            break
+        time.sleep(0.1)
+    assert s["state"] == "done", s
+    assert s["total"] == 5 and s["done"] == 5
+    dones = [d for d, _ in seen]
+    assert dones == sorted(dones)
+    html = client.get(page).get_data(as_text=True)
+    assert "Recommended pedestal floor friction" in text_of(html, "verdict")
+    assert html.count("<tr") >= 5  # header + 4 values
+    report = client.get(re.search(r'id="download-report" href="([^"]+)"', html).group(1))
+    assert report.status_code == 200 and b"Friction design sweep" in report.data
+    csv_text = client.get(page + "/files/sweep.csv").get_data(as_text=True)
+    lines = csv_text.strip().splitlines()
+    assert lines[0].startswith("static_friction,kinetic_friction,overturned")
+    assert [float(line.split(",")[0]) for line in lines[1:]] == pytest.approx([0.1, 0.2, 0.3, 0.4])
+    back = client.get(page + "/inputs").get_data(as_text=True)  # the form as it was sent
+    assert 'name="sweep_points" type="text" inputmode="numeric" value="4"' in back
+    assert 'id="pedestal" name="pedestal" type="checkbox" value="on" checked' in back
+    zipped = client.get(page + "/files/sweep-report.zip")
+    names = zipfile.ZipFile(io.BytesIO(zipped.data)).namelist()
+    assert {"report.html", "report.pdf", "sweep.csv", "sweep.png"} <= set(names)
+
+
+def test_sweep_methods_agree(tmp_path, monkeypatch):
+    """The sweep through rocking.analyses.design and through batch.sweep (used when the design
+    module is absent) give the same rows and the same recommendation."""
+    import sys
+
+    from rocking.web.tasks import sweep_task
+
+    config = {**CONFIG, "pedestal": {"mass": 50.0, "friction": {"static": 0.3, "kinetic": 0.22}},
+              "simulation": {"duration": 6.0}}
+    frictions = [0.1, 0.25, 0.4]
+    first = sweep_task(config=config, frictions=frictions, out_dir=str(tmp_path / "a"), sliding_limit=0.05, dpi=40)
+    monkeypatch.setitem(sys.modules, "rocking.analyses.design", None)  # import fails: fall back
+    second = sweep_task(config=config, frictions=frictions, out_dir=str(tmp_path / "b"), sliding_limit=0.05, dpi=40)
+    assert second["method"] == "batch sweep"
+    for a, b in zip(first["rows"], second["rows"]):
+        for key in ("overturned", "impacts", "peak_rotation", "peak_sliding", "kinetic_friction"):
+            assert a[key] == pytest.approx(b[key], rel=1e-9, abs=1e-12), key
+    assert first["best"]["static_friction"] == second["best"]["static_friction"]
+    assert first["duration"] == second["duration"] == 6.0
+    for result in (first, second):
+        assert all(r["peak_sliding"] <= 0.05 for r in [result["best"]]) or not result["meets_limits"]
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        ({"sweep_sliding_limit": "0"}, "sweep sliding limit: must be > 0 mm, got 0"),
+        ({"pedestal": ""}, "the design sweep varies the pedestal's floor friction"),
+        ({"sweep_from": "0.5", "sweep_to": "0.2"}, "sweep μs to: must be greater than μs from (0.5), got 0.2"),
+        ({"sweep_points": "1000"}, "sweep values: must be between 2 and 41, got 1000"),
+        ({"sweep_points": "two"}, "sweep values: enter a whole number, got 'two'"),
+    ],
+)
+def test_sweep_form_errors(client, change, message):
+    form = {**FORM, **PEDESTAL, "sweep_from": "0.1", "sweep_to": "0.4", "sweep_points": "4", **change}
+    r = client.post("/sweep", data=form)
+    assert r.status_code == 400
+    assert message in text_of(r.get_data(as_text=True), "error")
+
+
+def test_sweep_status_of_unknown_job(client):
+    assert client.get("/sweeps/" + "0" * 32 + "/status").status_code == 404
+    assert client.get("/sweeps/nonsense").status_code == 404
+
+
+# -------------------------------------------------------------------------------- safety
+def test_only_known_files_are_served(client):
+    assert client.get("/runs/" + "0" * 32 + "/response.png").status_code == 404
+    assert client.get("/runs/../../etc/passwd").status_code == 404
+    assert client.get("/runs/" + "0" * 32 + "/upload").status_code == 404
+
+
+def test_cross_site_posts_are_refused(client):
+    r = client.post("/run", data=FORM, headers={"Origin": "http://evil.example"})
+    assert r.status_code == 403
+    assert "cross-site" in text_of(r.get_data(as_text=True), "error")
+
+
+def test_unexpected_host_is_refused(tmp_path):
+    app = create_app({"ALLOWED_HOSTS": ["localhost", "127.0.0.1"], "WORK_DIR": str(tmp_path)})
+    try:
+        c = app.test_client()
+        assert c.get("/", headers={"Host": "127.0.0.1:8000"}).status_code == 200
+        assert c.get("/", headers={"Host": "rebind.example:8000"}).status_code == 400
+    finally:
+        app.extensions["rocking"].shutdown()
+
+
+# --------------------------------------------------------------------------- serve, CLI
+def test_serve_command_registers_with_its_options():
+    import typer
+    from typer.testing import CliRunner
+
+    from rocking.cli import serve
+
+    cli = typer.Typer()
+    serve.register(cli)
+    cli.command("other")(lambda: None)  # two commands: typer keeps the sub-command names
+    result = CliRunner().invoke(cli, ["serve", "--help"])
+    assert result.exit_code == 0
+    for option in ("--host", "--port", "127.0.0.1", "8000", "--timeout", "--max-upload-mb"):
+        assert option in result.output
+    bad = CliRunner().invoke(cli, ["serve", "--timeout", "0"])
+    assert bad.exit_code == 2 and "must be positive" in bad.output
+
+
+def test_server_listens_on_loopback_and_answers(tmp_path):
+    import urllib.request
+
+    from rocking.web.server import make_server
+
+    server, app = make_server("127.0.0.1", 0, {"WORK_DIR": str(tmp_path)})
+    thread = threading.Thread(target=server.serve_forever, daemon=True)
+    thread.start()
+    try:
+        assert server.server_address[0] == "127.0.0.1" and server.port > 0
+        with urllib.request.urlopen(f"http://127.0.0.1:{server.port}/healthz", timeout=10) as resp:
+            assert json.load(resp)["status"] == "ok"
+    finally:
+        server.shutdown()
+        server.server_close()
+        app.extensions["rocking"].shutdown()
