@@ -215,3 +215,14 @@ def test_key_point_kinematics_match_finite_differences():
     # the central difference errs by about dt^2/12 times the 4th derivative, ~1e-5 m/s^2 here.
     fd = (x[i + 1] - 2 * x[i] + x[i - 1]) / dt**2 + r.motion.acceleration(t[i])
     np.testing.assert_allclose(fd, acc[i], atol=2e-3)
+
+
+def test_a_floor_acceleration_touching_the_threshold_does_not_start_rocking():
+    """a_g = g tan α · cos(ωt) touches −g tan α at half period and turns back (a tangency):
+    the statue must stay at rest there, not rock the wrong way about the wrong corner."""
+    st = slender(0.02)
+    p = p_of(st)
+    pulse = rk.CosinePulse(amplitude=G * math.tan(st.slenderness), frequency=0.5 * p / (2 * math.pi))
+    r = rk.simulate(alone(st), pulse, duration=pulse.duration + 25.0 / p, options=OPTS)
+    assert not r.overturned
+    assert r.peak_rotation == 0.0 and r.summary()["first_rocking_time"] is None

@@ -59,6 +59,11 @@ def map_chunks(
     """Apply ``fn`` to every payload on the chosen workers, in order; ``progress(n_done_payloads)``."""
     if workers is None:
         workers = _default_workers()
+    if type(workers).__module__.split(".")[0] == "distributed":
+        # A bare dask.distributed Client: its map returns futures, the executor gathers them.
+        from .executors import DaskExecutor
+
+        workers = DaskExecutor(workers)
     results: list[np.ndarray] = []
     if hasattr(workers, "map"):
         iterator: Iterable[np.ndarray] = workers.map(fn, payloads)

@@ -126,6 +126,14 @@ class GroundMotion(AbstractMotion):
         object.__setattr__(self, "vertical", vertical)
         object.__setattr__(self, "meta", MappingProxyType(dict(meta)))
 
+    def __reduce__(self):
+        # A read-only mapping does not pickle: rebuild from plain values, so motions can go to
+        # worker processes and Dask clusters.
+        return (
+            _rebuild,
+            (self.time, self.values, self.name, self.source, self.units, dict(self.meta), self.vertical),
+        )
+
     # ----------------------------------------------------------------- construction
     @classmethod
     def from_arrays(
@@ -313,3 +321,8 @@ class GroundMotion(AbstractMotion):
             f"duration={self.duration:.6g} s, pga={self.pga:.6g} m/s², "
             f"vertical={'yes' if self.vertical is not None else 'no'})"
         )
+
+
+def _rebuild(time, values, name, source, units, meta, vertical):
+    """Unpickle a :class:`GroundMotion` (see ``GroundMotion.__reduce__``)."""
+    return GroundMotion(time=time, values=values, name=name, source=source, units=units, meta=meta, vertical=vertical)

@@ -454,6 +454,11 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                     if i <= 1 or i == ROCK_TO_NEGATIVE or i == ROCK_TO_POSITIVE:
                         if g1[i] < 0.0:
                             x_first, first = 0.0, i
+                    elif i == IMPACT and g1[i] < 0.0:
+                        # Rocking began at a tangency of the threshold (the floor acceleration
+                        # touched g·tan α and turned back): θ went the wrong way from the start.
+                        # The uplift did not happen; the statue stays at rest.
+                        x_first, first = 0.0, i
                     continue
                 g_lo = _guard_at(p, sig, s, y, F, h, x_lo, loc, t, exceeded, work, gbuf, i)
                 x = _locate(p, sig, s, y, F, h, loc, t, exceeded, work, gbuf, i, g_lo, g1[i], x_lo, 1.0)
@@ -536,6 +541,12 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                 kind = EV_EXCEED
                 exceeded = True
                 summ[S_EXCEED_TIME] = t
+            elif first == IMPACT and x_first == 0.0 and abs(y[3]) < p[REST_VEL]:
+                kind = EV_SETTLE
+                y[2] = 0.0
+                y[3] = 0.0
+                s = 0
+                sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
             elif first == IMPACT:
                 kind = EV_IMPACT
                 impacts += 1

@@ -1,0 +1,475 @@
+"""Overturning spectra: the smallest pulse (or harmonic) amplitude that overturns a block, against
+the frequency, in the dimensionless form of Zhang & Makris (2001) and Dimitrakopoulos & DeJong
+(2012): y = a_p/(g·tan α) against x = β = ω_p/p.
+
+Overturning is not monotonic in the amplitude: above the first overturning amplitude there can
+be *safe islands* (amplitudes at which the block survives again, e.g. because the stronger
+pulse makes it impact earlier). At every frequency the amplitude axis is therefore scanned on a
+geometric grid, and every change of outcome between two neighbouring grid points is bisected to
+the relative tolerance ``rtol``. Islands narrower than one grid step can be missed; refine with
+``n_scan``.
+
+The motions, for an amplitude a_p = A·g·tan α and a circular frequency ω_p = β·p:
+
+* ``"sine"``: one-sine pulse a_p·sin(ω_p t + ψ) on 0 ≤ t ≤ (2π − ψ)/ω_p; by default
+  ψ = asin(1/A) so that rocking starts at t = 0 (oracle O9, Zhang & Makris's pulse);
+  ``phase=0.0`` gives the plain one-sine;
+* ``"cosine"``: one-cosine pulse a_p·cos(ω_p t) on 0 ≤ t ≤ 2π/ω_p (O9b);
+* ``"ricker"``: Ricker wavelet with peak a_p and f = ω_p/2π, centred at 1.5/f;
+* ``"harmonic"``: a_p·sin(ω_p t) (``form="sin"``) for ``cycles`` cycles.
+
+Every run lasts the motion's duration plus ``free_time``/p (25 by default: enough for a
+block that is still rocking after the pulse to fall or settle).
+
+    >>> import rocking as rk
+    >>> from rocking.analyses.spectra import overturning_spectrum
+    >>> st = rk.Statue(width=0.3, height=1.5, mass=1.0)
+    >>> ds = overturning_spectrum(rk.System(statue=st), "sine", [1.0, 2.0], workers=1)   # doctest: +SKIP
+    >>> ds.amplitude_ratio.sel(pulse="sine").values                                      # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..excitation.harmonic import Harmonic
+from ..excitation.pulses import CosinePulse, RickerPulse, SinePulse
+from ..models.bodies import System
+from ..simulation import Options
+from ..solver import compiled as C
+from .store import ChunkStore, _version, chunk_ranges, fingerprint, run_chunks
+
+__all__ = [
+    "SHAPES",
+    "CRITERIA",
+    "SpectrumTask",
+    "overturning_spectrum",
+    "spectrum_motion",
+    "island_bands",
+    "plot_spectra",
+    "plot_spectra_overlay",
+]
+
+SHAPES = ("sine", "cosine", "ricker", "harmonic")
+#: "overturn": any overturning counts; "no_impact": only overturning before the first impact
+#: (mode 1 of Zhang & Makris); "exceed": |θ| reaching α (a quick, monotone-ish proxy).
+CRITERIA = ("overturn", "no_impact", "exceed")
+MAX_ISLANDS = 16
+MAX_EDGES = 2 * MAX_ISLANDS + 1
+
+
+def spectrum_motion(
+    shape: str,
+    amplitude_ratio: float,
+    frequency_ratio: float,
+    *,
+    g_tan_alpha: float,
+    p: float,
+    phase: float | str = "onset",
+    cycles: float = 3.0,
+) -> Any:
+    """The floor motion of one point (A, β) of a spectrum (see the module docstring)."""
+    a = float(amplitude_ratio) * g_tan_alpha
+    omega = float(frequency_ratio) * p
+    f = omega / (2.0 * math.pi)
+    if shape == "sine":
+        if phase == "onset":
+            psi = math.asin(min(1.0, 1.0 / amplitude_ratio)) if amplitude_ratio > 0 else 0.0
+        else:
+            psi = float(phase)
+        return SinePulse(amplitude=a, frequency=f, phase=psi)
+    if shape == "cosine":
+        return CosinePulse(amplitude=a, frequency=f)
+    if shape == "ricker":
+        return RickerPulse(amplitude=a, frequency=f)
+    if shape == "harmonic":
+        return Harmonic(amplitude=a, frequency=f, cycles=cycles, form="sin")
+    raise ValueError(f"unknown spectrum motion {shape!r}; use one of {', '.join(SHAPES)}")
+
+
+@dataclass(frozen=True)
+class SpectrumTask:
+    """Everything one worker needs to find the boundary at a few frequencies of one motion."""
+
+    system: System
+    shape: str
+    frequency_ratios: tuple[float, ...]
+    scan: tuple[float, ...]
+    rtol: float
+    criterion: str
+    phase: float | str
+    cycles: float
+    free_time: float
+    options: Options
+
+
+def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: float, counter: list[int]) -> bool:
+    from .batch import run_raw
+
+    if A <= 1.0:
+        # |a_g| never exceeds g·tan α: nothing can start rocking (alone, or on a pedestal that
+        # passes on at most μk·g < |a_g|), so there is nothing to simulate
+        return task.criterion not in ("overturn", "no_impact", "exceed")
+    motion = spectrum_motion(task.shape, A, beta, g_tan_alpha=g_tan_alpha, p=p, phase=task.phase, cycles=task.cycles)
+    raw = run_raw(task.system, motion, task.options, motion.duration + task.free_time / p)
+    counter[0] += 1
+    status = int(raw[C.S_STATUS])
+    if status in (C.STATUS_SINGULAR, C.STATUS_STEP_FAILED):
+        counter[1] += 1
+        return False
+    if task.criterion == "exceed":
+        return not math.isnan(raw[C.S_EXCEED_TIME])
+    overturned = status == C.STATUS_OVERTURNED
+    if task.criterion == "no_impact":
+        return overturned and int(raw[C.S_IMPACTS]) == 0
+    return overturned
+
+
+def _bisect(fails: Callable[[float], bool], lo: float, hi: float, f_lo: bool, rtol: float) -> tuple[float, float]:
+    """Narrow [lo, hi] (outcomes differ at the ends) to hi − lo ≤ rtol·hi."""
+    while hi - lo > rtol * hi:
+        mid = math.sqrt(lo * hi) if lo > 0 else 0.5 * (lo + hi)
+        if fails(mid) == f_lo:
+            lo = mid
+        else:
+            hi = mid
+    return lo, hi
+
+
+def _spectrum_chunk(task: SpectrumTask) -> dict[str, np.ndarray]:
+    """Worker task: boundary, islands and scan at each frequency of ``task``."""
+    statue = task.system.statue
+    g = task.options.gravity
+    p = statue.frequency_parameter(g)
+    g_tan_alpha = g * math.tan(statue.slenderness)
+    nf, ns = len(task.frequency_ratios), len(task.scan)
+    out = {
+        "lower": np.full(nf, np.nan),
+        "upper": np.full(nf, np.nan),
+        "island_lower": np.full((nf, MAX_ISLANDS), np.nan),
+        "island_upper": np.full((nf, MAX_ISLANDS), np.nan),
+        "n_islands": np.zeros(nf, dtype=np.int64),
+        "edge_lower": np.full((nf, MAX_EDGES), np.nan),
+        "edge_upper": np.full((nf, MAX_EDGES), np.nan),
+        "edge_to_failure": np.zeros((nf, MAX_EDGES), dtype=bool),
+        "truncated": np.zeros(nf, dtype=bool),
+        "scan_fails": np.zeros((nf, ns), dtype=bool),
+        "runs": np.zeros(nf, dtype=np.int64),
+        "failed_runs": np.zeros(nf, dtype=np.int64),
+    }
+    for k, beta in enumerate(task.frequency_ratios):
+        counter = [0, 0]
+
+        def fails(A: float, beta: float = beta) -> bool:
+            return _fails(task, A, beta, g_tan_alpha, p, counter)
+
+        scan = np.array([fails(A) for A in task.scan], dtype=bool)
+        out["scan_fails"][k] = scan
+        edges = []  # (boundary lo, boundary hi, becomes_failing)
+        for j in np.flatnonzero(scan[1:] != scan[:-1]):
+            lo, hi = _bisect(fails, task.scan[j], task.scan[j + 1], bool(scan[j]), task.rtol)
+            edges.append((lo, hi, not scan[j]))
+        for e, (lo, hi, to_failure) in enumerate(edges[:MAX_EDGES]):
+            out["edge_lower"][k, e], out["edge_upper"][k, e], out["edge_to_failure"][k, e] = lo, hi, to_failure
+        if scan[0]:  # fails already at the bottom of the scan: the boundary is below it
+            out["upper"][k] = task.scan[0]
+            out["truncated"][k] = True
+            tail = edges
+        else:
+            first = next((i for i, e in enumerate(edges) if e[2]), None)
+            if first is not None:
+                out["lower"][k], out["upper"][k] = edges[first][0], edges[first][1]
+            tail = edges[first + 1 :] if first is not None else []
+        # after the first overturn, edges alternate: safe again (island starts), fails again (ends)
+        n_isl = 0
+        for i in range(0, len(tail), 2):
+            start = tail[i]
+            end = tail[i + 1] if i + 1 < len(tail) else None
+            if n_isl < MAX_ISLANDS:
+                out["island_lower"][k, n_isl] = 0.5 * (start[0] + start[1])
+                out["island_upper"][k, n_isl] = 0.5 * (end[0] + end[1]) if end is not None else np.inf
+            n_isl += 1
+        out["n_islands"][k] = n_isl
+        out["runs"][k], out["failed_runs"][k] = counter
+    return out
+
+
+def _as_grid(values: Sequence[float] | np.ndarray, name: str) -> np.ndarray:
+    arr = np.atleast_1d(np.asarray(values, dtype=float))
+    if arr.ndim != 1 or arr.size == 0 or not np.all(np.isfinite(arr)) or np.any(arr <= 0):
+        raise ValueError(f"{name} must be positive finite numbers, got {values!r}")
+    return arr
+
+
+def overturning_spectrum(
+    system: System,
+    shapes: str | Sequence[str] = "sine",
+    frequency_ratios: Sequence[float] | np.ndarray = tuple(np.round(np.geomspace(0.5, 8.0, 25), 6)),
+    *,
+    amplitude_range: tuple[float, float] = (1.01, 30.0),
+    n_scan: int = 48,
+    rtol: float = 1e-3,
+    criterion: str = "overturn",
+    phase: float | str = "onset",
+    cycles: float = 3.0,
+    free_time: float = 25.0,
+    options: Options = Options(),
+    workers: int | Any | None = None,
+    folder: str | os.PathLike[str] | None = None,
+    fresh: bool = False,
+    chunk_size: int | None = None,
+    progress: Callable[[int, int], None] | None = None,
+):
+    """Minimum overturning amplitude a_p/(g tan α) against ω_p/p, with the safe islands above it.
+
+    Parameters
+    ----------
+    system : System
+        The statue, alone or on a pedestal; α and p = √(3g/4R) are the statue's.
+    shapes : str or sequence of str
+        ``"sine"``, ``"cosine"``, ``"ricker"``, ``"harmonic"`` (see the module docstring).
+    frequency_ratios : sequence of float
+        β = ω_p/p.
+    amplitude_range : (float, float)
+        The scanned a_p/(g tan α). At or below 1 nothing can rock (no run is made there); just
+        above 1 slender blocks chatter through thousands of tiny impacts, which is slow, hence
+        the default lower end 1.01. A boundary below the range is flagged ``truncated``.
+    n_scan : int
+        Points of the geometric coarse scan (the islands it can see are wider than one step).
+    rtol : float
+        Relative width to which every change of outcome is bisected.
+    criterion : {"overturn", "no_impact", "exceed"}
+        What counts as failure (``"no_impact"``: overturning before any impact, mode 1).
+    phase : "onset" or float
+        Sine pulse phase ψ: ``"onset"`` = asin(1/A) (rocking starts at t = 0), or a fixed angle.
+    cycles : float
+        Cycles of the harmonic motion.
+    free_time : float
+        Extra simulated time after the motion, in units of 1/p.
+    options : Options
+    workers : int, executor or Dask client
+        As in :mod:`rocking.analyses.batch` (tasks are groups of frequencies).
+    folder : path-like, optional
+        Save every finished chunk there and resume from it (see :mod:`rocking.analyses.store`).
+    fresh : bool
+        Start afresh in a folder that holds other results.
+    chunk_size : int, optional
+        Frequencies per task (default: about 48 tasks in all).
+    progress : callable, optional
+        ``progress(done, total)`` in frequencies.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions ``pulse``, ``frequency_ratio``, ``island`` and ``scan``. Variables:
+        ``amplitude_ratio`` (midpoint of the final bracket; NaN if nothing in range fails),
+        ``amplitude_ratio_lower``/``_upper`` (the bracket), ``truncated`` (it already fails at
+        the bottom of the range), ``island_lower``/``island_upper`` (safe islands above the
+        boundary; ``inf`` = still safe at the top of the scan), ``n_islands``, every change of
+        outcome found (``edge_lower``/``edge_upper`` brackets, ``edge_to_failure`` True where
+        the block fails above it), ``scan_fails`` (the coarse scan), ``runs`` and
+        ``failed_runs`` (solver failures, counted as safe).
+
+    Notes
+    -----
+    The boundary is the first change from safe to failing *that the scan sees*. Under harmonic
+    motion (several cycles) the overturning region of a rocking block is ragged, with
+    overturning slivers narrower than any practical scan step; refine ``n_scan`` to resolve
+    more of them. Every reported bracket is exact: the block survives at its lower end and
+    fails at its upper end (or the reverse for the end of an overturning region).
+        Attributes: α, p, g, tan α and the settings.
+    """
+    import xarray as xr
+
+    shapes = [shapes] if isinstance(shapes, str) else list(shapes)
+    for s in shapes:
+        if s not in SHAPES:
+            raise ValueError(f"unknown spectrum motion {s!r}; use one of {', '.join(SHAPES)}")
+    if len(set(shapes)) != len(shapes):
+        raise ValueError(f"repeated motion in {shapes!r}")
+    if criterion not in CRITERIA:
+        raise ValueError(f"criterion must be one of {', '.join(CRITERIA)}, got {criterion!r}")
+    betas = _as_grid(frequency_ratios, "frequency_ratios")
+    lo, hi = (float(x) for x in amplitude_range)
+    if not (0 < lo < hi and math.isfinite(hi)):
+        raise ValueError(f"amplitude_range must be 0 < low < high, got {amplitude_range!r}")
+    if int(n_scan) < 2:
+        raise ValueError(f"n_scan must be >= 2, got {n_scan!r}")
+    if not 0 < rtol < 1:
+        raise ValueError(f"rtol must lie in (0, 1), got {rtol!r}")
+    if not free_time >= 0:
+        raise ValueError(f"free_time must be >= 0, got {free_time!r}")
+    if phase != "onset" and not isinstance(phase, (int, float)):
+        raise ValueError(f"phase must be 'onset' or a number, got {phase!r}")
+    scan = tuple(float(x) for x in np.geomspace(lo, hi, int(n_scan)))
+    size = int(chunk_size) if chunk_size else max(1, math.ceil(len(shapes) * betas.size / 48))
+
+    tasks: list[SpectrumTask] = []
+    index: list[tuple[int, range]] = []
+    for si, shape in enumerate(shapes):
+        for r in chunk_ranges(betas.size, size):
+            tasks.append(
+                SpectrumTask(system, shape, tuple(float(b) for b in betas[r.start : r.stop]), scan, float(rtol),
+                             criterion, phase if phase == "onset" else float(phase), float(cycles),
+                             float(free_time), options)
+            )
+            index.append((si, r))
+    store = None
+    if folder is not None:
+        fp = fingerprint({"study": "spectrum", "tasks": tasks, "version": _version()})
+        meta = {"shapes": shapes, "frequency_ratios": betas.tolist(), "amplitude_range": [lo, hi],
+                "n_scan": int(n_scan), "rtol": rtol, "criterion": criterion}
+        store = ChunkStore(folder, study="spectrum", fingerprint=fp, n_chunks=len(tasks), meta=meta, fresh=fresh)
+    parts = run_chunks(_spectrum_chunk, tasks, store=store, workers=workers,
+                       sizes=[len(t.frequency_ratios) for t in tasks], progress=progress)
+
+    ns, nb = len(shapes), betas.size
+    full: dict[str, np.ndarray] = {
+        "lower": np.full((ns, nb), np.nan),
+        "upper": np.full((ns, nb), np.nan),
+        "island_lower": np.full((ns, nb, MAX_ISLANDS), np.nan),
+        "island_upper": np.full((ns, nb, MAX_ISLANDS), np.nan),
+        "n_islands": np.zeros((ns, nb), dtype=np.int64),
+        "edge_lower": np.full((ns, nb, MAX_EDGES), np.nan),
+        "edge_upper": np.full((ns, nb, MAX_EDGES), np.nan),
+        "edge_to_failure": np.zeros((ns, nb, MAX_EDGES), dtype=bool),
+        "truncated": np.zeros((ns, nb), dtype=bool),
+        "scan_fails": np.zeros((ns, nb, len(scan)), dtype=bool),
+        "runs": np.zeros((ns, nb), dtype=np.int64),
+        "failed_runs": np.zeros((ns, nb), dtype=np.int64),
+    }
+    for (si, r), part in zip(index, parts):
+        for key, arr in full.items():
+            arr[si, r.start : r.stop] = part[key]
+    used = int(max(1, full["n_islands"].max()))
+    n_edges = int(max(1, np.isfinite(full["edge_lower"]).sum(axis=-1).max()))
+    statue = system.statue
+    g = options.gravity
+    mid = np.where(np.isnan(full["lower"]), full["upper"], 0.5 * (full["lower"] + full["upper"]))
+    mid = np.where(full["truncated"], full["upper"], mid)
+    dims = ("pulse", "frequency_ratio")
+    ds = xr.Dataset(
+        {
+            "amplitude_ratio": (dims, mid, {"long_name": "minimum overturning a_p/(g tan α)"}),
+            "amplitude_ratio_lower": (dims, full["lower"]),
+            "amplitude_ratio_upper": (dims, full["upper"]),
+            "truncated": (dims, full["truncated"]),
+            "island_lower": (dims + ("island",), full["island_lower"][:, :, :used]),
+            "island_upper": (dims + ("island",), full["island_upper"][:, :, :used]),
+            "n_islands": (dims, full["n_islands"]),
+            "edge_lower": (dims + ("edge",), full["edge_lower"][:, :, :n_edges]),
+            "edge_upper": (dims + ("edge",), full["edge_upper"][:, :, :n_edges]),
+            "edge_to_failure": (dims + ("edge",), full["edge_to_failure"][:, :, :n_edges]),
+            "scan_fails": (dims + ("scan",), full["scan_fails"]),
+            "runs": (dims, full["runs"]),
+            "failed_runs": (dims, full["failed_runs"]),
+        },
+        coords={
+            "pulse": np.array(shapes, dtype=str),
+            "frequency_ratio": betas,
+            "scan_amplitude_ratio": ("scan", np.array(scan)),
+        },
+        attrs={
+            "study": "overturning spectrum",
+            "alpha": statue.slenderness,
+            "tan_alpha": math.tan(statue.slenderness),
+            "p": statue.frequency_parameter(g),
+            "gravity": g,
+            "restitution": statue.effective_restitution,
+            "pedestal": int(system.pedestal is not None),
+            "criterion": criterion,
+            "rtol": float(rtol),
+            "free_time": float(free_time),
+            "cycles": float(cycles),
+            "phase": str(phase),
+        },
+    )
+    return ds
+
+
+def island_bands(ds, pulse: str) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """The safe islands of one motion as ``(frequency_ratio, lower, upper)`` bands for
+    :func:`rocking.viz.plots.plot_spectrum` (NaN where an island is absent; an island open at
+    the top is cut at the top of the scan)."""
+    sub = ds.sel(pulse=pulse)
+    top = float(ds.scan_amplitude_ratio.max())
+    bands = []
+    for j in range(ds.sizes.get("island", 0)):
+        lo = sub.island_lower.isel(island=j).values
+        hi = np.minimum(sub.island_upper.isel(island=j).values, top)
+        if np.any(np.isfinite(lo)):
+            bands.append((ds.frequency_ratio.values, lo, hi))
+    return bands
+
+
+_COLORS = {"sine": "#c0392b", "cosine": "#1f77b4", "ricker": "#2ca02c", "harmonic": "#8e44ad"}
+
+
+def plot_spectra(ds, *, title: str | None = None, panel_size: tuple[float, float] = (4.6, 3.4)):
+    """One panel per motion (as in Zhang & Makris 2001): the boundary, the overturn region shaded
+    and the safe islands hatched. Returns the matplotlib Figure."""
+    from matplotlib.figure import Figure
+
+    from ..viz.plots import plot_spectrum
+
+    pulses = ds.pulse.values.tolist()
+    cols = 1 if len(pulses) == 1 else 2
+    rows = math.ceil(len(pulses) / cols)
+    fig = Figure(figsize=(panel_size[0] * cols, panel_size[1] * rows), layout="constrained")
+    axes = fig.subplots(rows, cols, squeeze=False).ravel()
+    top = float(ds.scan_amplitude_ratio.max())
+    for ax, pulse in zip(axes, pulses):
+        amp = ds.amplitude_ratio.sel(pulse=pulse).values
+        upper = ds.island_upper.sel(pulse=pulse).values
+        finite = np.concatenate((amp[np.isfinite(amp)], np.minimum(upper[~np.isnan(upper)], top)))
+        plot_spectrum(
+            frequency_ratio=ds.frequency_ratio.values,
+            amplitude_ratio=amp,
+            safe_islands=island_bands(ds, pulse) or None,
+            label="smallest overturning amplitude",
+            color=_COLORS.get(pulse),
+            ymax=min(top, 1.2 * float(finite.max())) if finite.size else top,
+            ax=ax,
+        )
+        ax.set_title(f"{pulse}", fontsize=9)
+    for ax in axes[len(pulses):]:
+        ax.set_visible(False)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    return fig
+
+
+def plot_spectra_overlay(ds, ax=None, *, title: str | None = None):
+    """The boundaries of all motions of a spectrum dataset on one chart (islands hatched)."""
+    from matplotlib.patches import Patch
+
+    from ..viz.plots import plot_spectrum
+
+    finite = ds.amplitude_ratio.values[np.isfinite(ds.amplitude_ratio.values)]
+    top = 1.15 * float(finite.max()) if finite.size else float(ds.scan_amplitude_ratio.max())
+    for pulse in ds.pulse.values.tolist():
+        ax = plot_spectrum(
+            frequency_ratio=ds.frequency_ratio.values,
+            amplitude_ratio=ds.amplitude_ratio.sel(pulse=pulse).values,
+            safe_islands=island_bands(ds, pulse) or None,
+            label=f"{pulse}",
+            color=_COLORS.get(pulse),
+            shade=(len(ds.pulse) == 1),
+            ymax=top,
+            ax=ax,
+        )
+    handles = [ln for ln in ax.get_lines() if not ln.get_label().startswith("_")]
+    if np.any(ds.n_islands.values > 0):
+        handles.append(Patch(facecolor="white", edgecolor="0.3", hatch="///", label="safe island"))
+    if len(ds.pulse) == 1:
+        handles.append(Patch(facecolor="#f6c9c4", edgecolor="none", label="overturns"))
+    ax.legend(handles=handles, loc="upper left", fontsize=7.5, framealpha=0.9)
+    if title:
+        ax.set_title(title, fontsize=9)
+    return ax
