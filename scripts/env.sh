@@ -1,4 +1,5 @@
-# Shared by demo.sh and test.sh: create .venv beside the repository and install the package.
+# Shared by demo.sh and test.sh: create .venv beside the repository and install the package
+# (with the optional dependency group named by the first argument, if any).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
@@ -7,4 +8,8 @@ if [ ! -x .venv/bin/python ]; then
   "$PY" -m venv .venv
 fi
 .venv/bin/python -m pip install --quiet --upgrade pip >/dev/null 2>&1 || true
-.venv/bin/python -m pip install --quiet -e ".[$1]"
+if [ -n "${1:-}" ]; then
+  .venv/bin/python -m pip install --quiet -e ".[$1]"
+else
+  .venv/bin/python -m pip install --quiet -e .
+fi
