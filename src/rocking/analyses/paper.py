@@ -424,7 +424,7 @@ def outcome_table_markdown(rows: Sequence[Mapping[str, Any]]) -> str:
             f"g = {first['gravity']} m/s², r = {first['restitution']}, pedestal m1 = {TABLE_1.pedestal_mass} kg "
             f"on μs = {TABLE_1.static_friction}, μk = {TABLE_1.kinetic_friction}. "
             "u: sliding of the body on the floor (pedestal, or the statue alone). "
-            "μ top: largest friction ratio |Px|/Py needed under the statue (sampled at solver steps and impacts)."
+            "μ top: largest friction ratio |Px|/Py needed under the statue (sampled at every solver stage and at impacts, while |θ| ≤ α)."
         )
     return "\n".join(lines) + "\n"
 

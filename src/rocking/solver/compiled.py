@@ -116,8 +116,9 @@ def _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin):
         K[stage, 4] = p_in
         K[stage, 5] = p_fric
         track_threshold_guards(p, sig, s, work, a, av, udd, f, n, gmin)
-        # The friction the statue's base needs peaks between step ends: sample it at the stages.
-        if py > 0.0:
+        # The friction the statue's base needs peaks between step ends: sample it at the stages
+        # (while |θ| ≤ α: beyond, the statue is toppling and the ratio is no design quantity).
+        if py > 0.0 and abs(work[2]) <= p[ALPHA]:
             gmin[N_GUARDS] = max(gmin[N_GUARDS], abs(px) / py)
     dop853.advance(y, K, h, y_new)
     rhs(t + h, y_new, p, sig, s, loc, K[dop853.FSAL])
@@ -636,7 +637,8 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
         energy_scale = max(energy_scale, abs(e), abs(y[4]), abs(y[5]))
         balance = max(balance, abs(e - e0 - y[4] + y[5] + d_impact))
         if py > 0.0:
-            top_ratio = max(top_ratio, abs(px) / py)
+            if abs(y[2]) <= p[ALPHA]:
+                top_ratio = max(top_ratio, abs(px) / py)
         if s != 0:
             if n_full <= 0.0:
                 if math.isnan(summ[S_N_NONPOSITIVE]):
