@@ -61,50 +61,36 @@ LOCAL_SIZE = 5
 
 
 @njit(cache=True)
-def localise(kind, params, times, values, piece, loc, k0):
-    """Write into loc[k0:k0+5] the formula valid on the piece containing time ``piece``:
+def localise(kind, params, times, values, piece):
+    """The formula valid on the piece containing time ``piece``, as a 5-tuple:
     (LOCAL_LINEAR, a0, slope, t0, 0) for a0 + slope·(t − t0); (LOCAL_COSINE, A, ω, φ, 0);
-    (LOCAL_RICKER, a_p, f, t_0, 0); or LOCAL_ZERO."""
-    loc[k0] = LOCAL_ZERO
-    loc[k0 + 1] = 0.0
-    loc[k0 + 2] = 0.0
-    loc[k0 + 3] = 0.0
-    loc[k0 + 4] = 0.0
+    (LOCAL_RICKER, a_p, f, t_0, 0); or (LOCAL_ZERO, 0, 0, 0, 0). A tuple, not an array: the
+    innermost loop then passes it around without reference counting."""
     if kind == KIND_SAMPLED:
         n = times.shape[0]
         if piece < times[0] or piece > times[n - 1]:
-            return
+            return (LOCAL_ZERO, 0.0, 0.0, 0.0, 0.0)
         i = np.searchsorted(times, piece, side="right") - 1
         if i >= n - 1:
             i = n - 2
-        loc[k0] = LOCAL_LINEAR
-        loc[k0 + 1] = values[i]
-        loc[k0 + 2] = (values[i + 1] - values[i]) / (times[i + 1] - times[i])
-        loc[k0 + 3] = times[i]
-        return
+        slope = (values[i + 1] - values[i]) / (times[i + 1] - times[i])
+        return (LOCAL_LINEAR, values[i], slope, times[i], 0.0)
     if kind < 0 or piece < 0.0 or piece > params[3]:
-        return
+        return (LOCAL_ZERO, 0.0, 0.0, 0.0, 0.0)
     if kind == KIND_HARMONIC or kind == KIND_SINE_PULSE:
-        loc[k0] = LOCAL_COSINE
-        loc[k0 + 1] = params[0]
-        loc[k0 + 2] = params[1]
-        loc[k0 + 3] = params[2]
-    elif kind == KIND_RECTANGLE:
-        loc[k0] = LOCAL_LINEAR
-        loc[k0 + 1] = params[0]
-    elif kind == KIND_RAMP:
-        loc[k0] = LOCAL_LINEAR
-        loc[k0 + 2] = params[0]
-    elif kind == KIND_RICKER:
-        loc[k0] = LOCAL_RICKER
-        loc[k0 + 1] = params[0]
-        loc[k0 + 2] = params[1]
-        loc[k0 + 3] = params[2]
+        return (LOCAL_COSINE, params[0], params[1], params[2], 0.0)
+    if kind == KIND_RECTANGLE:
+        return (LOCAL_LINEAR, params[0], 0.0, 0.0, 0.0)
+    if kind == KIND_RAMP:
+        return (LOCAL_LINEAR, 0.0, params[0], 0.0, 0.0)
+    if kind == KIND_RICKER:
+        return (LOCAL_RICKER, params[0], params[1], params[2], 0.0)
+    return (LOCAL_ZERO, 0.0, 0.0, 0.0, 0.0)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def local_value(loc, k0, t):
-    """Value at time t of the localised formula in loc[k0:k0+5]."""
+    """Value at time t of the localised formula loc[k0:k0+5] (a tuple of localised signals)."""
     mode = loc[k0]
     if mode == LOCAL_LINEAR:
         return loc[k0 + 1] + loc[k0 + 2] * (t - loc[k0 + 3])

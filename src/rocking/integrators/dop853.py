@@ -267,7 +267,7 @@ for _arr in (C, A, B, E3, E5, C_EXTRA, A_EXTRA, D):
 del _arr
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def stage_input(y, K, h, stage, out):
     """State at which stage ``stage`` (1…11) is evaluated: y + h·Σ_{k<stage} A[stage, k]·K[k].
 
@@ -283,7 +283,7 @@ def stage_input(y, K, h, stage, out):
         out[j] = y[j] + h * acc
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def advance(y, K, h, y_new):
     """8th-order solution y + h·Σ_k B[k]·K[k] (k = 0…11) into ``y_new``."""
     for j in range(y.shape[0]):

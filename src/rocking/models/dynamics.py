@@ -26,7 +26,7 @@ from numba import njit
 from .parameters import ALPHA, B, CAN_SLIDE, G, I_O, M, M1, M2, MU_K, NORMAL_PAPER, PED_HALF_WIDTH, PED_HEIGHT, R
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _cs(p, s, theta):
     if s == 0:
         return 1.0, 0.0
@@ -34,7 +34,7 @@ def _cs(p, s, theta):
     return math.cos(phi), math.sin(phi)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _accelerations_cs(p, sig, s, theta_dot, a, av, c, sn):
     grav = p[G] + av
     if s == 0:
@@ -64,7 +64,7 @@ def _accelerations_cs(p, sig, s, theta_dot, a, av, c, sn):
     return udd, thdd, True
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _floor_forces_cs(p, s, theta_dot, a, av, udd, thdd, c, sn):
     grav = p[G] + av
     if s == 0:
@@ -75,7 +75,7 @@ def _floor_forces_cs(p, s, theta_dot, a, av, udd, thdd, c, sn):
     return f, n
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _statue_contact_cs(p, s, theta_dot, a, av, udd, thdd, c, sn):
     grav = p[G] + av
     if s == 0:
@@ -85,7 +85,7 @@ def _statue_contact_cs(p, s, theta_dot, a, av, udd, thdd, c, sn):
     return px, py
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _power_cs(p, sig, s, u_dot, theta_dot, a, av, n, c, sn):
     if s == 0:
         p_in = -a * p[M] * u_dot
@@ -97,7 +97,7 @@ def _power_cs(p, sig, s, u_dot, theta_dot, a, av, n, c, sn):
     return p_in, p[MU_K] * friction_normal(p, n, av) * abs(u_dot)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def accelerations(p, sig, s, u_dot, theta, theta_dot, a, av):
     """(ü, θ̈, ok) in the regime (sig, s); ok is False when the sliding system is singular
     (a Painlevé-type indeterminacy, possible only for μk ≥ 2/3 with a light pedestal)."""
@@ -105,7 +105,7 @@ def accelerations(p, sig, s, u_dot, theta, theta_dot, a, av):
     return _accelerations_cs(p, sig, s, theta_dot, a, av, c, sn)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def floor_forces(p, s, theta, theta_dot, a, av, udd, thdd):
     """(F, N): horizontal force the floor must exert on the sliding body, and the normal force
     (N), both N, from the momentum balance of the whole system (derivation §3.4)."""
@@ -113,7 +113,7 @@ def floor_forces(p, s, theta, theta_dot, a, av, udd, thdd):
     return _floor_forces_cs(p, s, theta_dot, a, av, udd, thdd, c, sn)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def friction_normal(p, n_full, av):
     """The normal force the friction law uses: the full N, or M(g + a_v) in the paper's model."""
     if p[NORMAL_PAPER] > 0.5:
@@ -137,7 +137,7 @@ def power(p, sig, s, u_dot, theta, theta_dot, a, av, udd, thdd):
     return _power_cs(p, sig, s, u_dot, theta_dot, a, av, n, c, sn)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def evaluate_all(p, sig, s, u_dot, theta, theta_dot, a, av):
     """Everything the solver needs at one state, with one cos/sin:
     (ü, θ̈, ok, F, N, P_x, P_y, P_in, P_friction)."""

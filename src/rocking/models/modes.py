@@ -38,7 +38,7 @@ def evaluate_guards(p, sig, s, y, a, av, exceeded, out):
     guards_from_forces(p, sig, s, y, a, av, udd, f, n, exceeded, out)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def guards_from_forces(p, sig, s, y, a, av, udd, f, n, exceeded, out):
     """:func:`evaluate_guards` when ü and the floor forces (F, N) at y are already known."""
     for i in range(N_GUARDS):
@@ -63,7 +63,7 @@ def guards_from_forces(p, sig, s, y, a, av, udd, f, n, exceeded, out):
         out[FALL] = 0.5 * math.pi - abs(theta)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def track_threshold_guards(p, sig, s, y, a, av, udd, f, n, gmin):
     """Lower ``gmin`` to the values of the guards that follow the floor motion (friction cone,
     rocking threshold, sliding velocity) at an interior state of a step, given its horizontal

@@ -14,8 +14,9 @@ NORMAL_PAPER, IMPACT_COULOMB, CAN_SLIDE, REST_VEL, MU_TOP, PED_HALF_WIDTH, PED_H
 N_PARAMS = 19
 
 
-def pack(system: System, *, gravity: float, normal_force: str, impact: str, rest_velocity: float) -> np.ndarray:
-    """Return the parameter vector (see the index constants above) for the kernels."""
+def pack(system: System, *, gravity: float, normal_force: str, impact: str, rest_velocity: float) -> tuple:
+    """Return the parameter vector (see the index constants above) for the kernels, as a tuple
+    of floats: compiled code passes tuples by value, without reference counting."""
     st = system.statue
     p = np.zeros(N_PARAMS)
     p[B], p[H] = st.b, st.h
@@ -37,4 +38,4 @@ def pack(system: System, *, gravity: float, normal_force: str, impact: str, rest
     ped = system.pedestal
     p[PED_HALF_WIDTH] = 0.5 * ped.width if ped is not None and ped.width is not None else -1.0
     p[PED_HEIGHT] = ped.height if ped is not None and ped.height is not None else -1.0
-    return p
+    return tuple(float(v) for v in p)

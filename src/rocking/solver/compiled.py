@@ -60,12 +60,12 @@ N_DIAG = 7  # extra right-hand-side outputs: a_g, a_v, F, N, P_x, P_y, ok (not i
 
 
 @njit(cache=True)
-def _localise(sig_h, sig_v, piece, loc):
-    """Coefficients of the floor motion on the piece containing ``piece`` (see signal.localise)."""
+def _localise(sig_h, sig_v, piece):
+    """Coefficients of the horizontal and vertical floor motion on the piece containing
+    ``piece``, as one 10-tuple (see signal.localise)."""
     kh, ph, th, vh = sig_h
     kv, pv, tv, vv = sig_v
-    localise(kh, ph, th, vh, piece, loc, 0)
-    localise(kv, pv, tv, vv, piece, loc, LOCAL_SIZE)
+    return localise(kh, ph, th, vh, piece) + localise(kv, pv, tv, vv, piece)
 
 
 @njit(cache=True)
@@ -74,7 +74,7 @@ def _ground(loc, t):
     return local_value(loc, 0, t), local_value(loc, LOCAL_SIZE, t)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rhs(t, y, p, sig, s, loc, out):
     """dy/dt into ``out``; out[6:] receives (a_g, a_v, F, N, P_x, P_y, ok) for guards and checks."""
     a, av = _ground(loc, t)
@@ -238,19 +238,17 @@ def _theta_dot_root(y0, F, work):
 
 
 @njit(cache=True)
-def _cross_breakpoint(p, y, sig, s, t, t_end, ib, breakpoints, sig_h, sig_v, loc, loc_next, events, n_ev, max_events,
+def _cross_breakpoint(p, y, sig, s, t, t_end, ib, breakpoints, sig_h, sig_v, loc, events, n_ev, max_events,
                       indeterminate):
     """At a breakpoint of the floor motion — a sample time of a record (continuous) or a jump
-    (pulse start or end) — move ``loc`` to the next piece and re-select the regime.
-    Returns (ib, t_stop, sig, s, fresh, n_ev, indeterminate)."""
+    (pulse start or end) — move to the next piece and re-select the regime.
+    Returns (ib, t_stop, sig, s, fresh, n_ev, indeterminate, loc)."""
     nb = breakpoints.shape[0]
     ib += 1
     t_stop = min(breakpoints[ib], t_end) if ib < nb else t_end
-    _localise(sig_h, sig_v, t + 0.5 * (t_stop - t), loc_next)
+    loc_next = _localise(sig_h, sig_v, t + 0.5 * (t_stop - t))
     a, av = _ground(loc_next, t)
     a_old, av_old = _ground(loc, t)
-    for j in range(2 * LOCAL_SIZE):
-        loc[j] = loc_next[j]
     sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
     if not ok:
         indeterminate += 1
@@ -269,7 +267,7 @@ def _cross_breakpoint(p, y, sig, s, t, t_end, ib, breakpoints, sig_h, sig_v, loc
             n_ev += 1
     jump = abs(a - a_old) + abs(av - av_old) > 1e-12 * (abs(a) + abs(av) + p[G])
     fresh = jump or sig2 != sig or s2 != s
-    return ib, t_stop, sig2, s2, fresh, n_ev, indeterminate
+    return ib, t_stop, sig2, s2, fresh, n_ev, indeterminate, loc_next
 
 
 @njit(cache=True)
@@ -333,9 +331,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
     while ib < nb and breakpoints[ib] <= t:
         ib += 1
     t_stop = min(breakpoints[ib], t_end) if ib < nb else t_end
-    loc = np.zeros(2 * LOCAL_SIZE)
-    loc_next = np.zeros(2 * LOCAL_SIZE)
-    _localise(sig_h, sig_v, t + 0.5 * (t_stop - t), loc)
+    loc = _localise(sig_h, sig_v, t + 0.5 * (t_stop - t))
     a, av = _ground(loc, t)
     s_init = 0
     if y[2] != 0.0:
@@ -355,7 +351,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
             while ib < nb and breakpoints[ib] <= t:
                 ib += 1
             t_stop = min(breakpoints[ib], t_end) if ib < nb else t_end
-            _localise(sig_h, sig_v, t + 0.5 * (t_stop - t), loc)
+            loc = _localise(sig_h, sig_v, t + 0.5 * (t_stop - t))
             rhs(t, y, p, sig, s, loc, K[0])
             a, av = _ground(loc, t)
             evaluate_guards(p, sig, s, y, a, av, exceeded, g0)
@@ -388,8 +384,8 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                 for i in range(N_GUARDS):
                     g0[i] = g1[i]
                 if t < t_end:
-                    ib, t_stop, sig, s, fresh, n_ev, indeterminate = _cross_breakpoint(
-                        p, y, sig, s, t, t_end, ib, breakpoints, sig_h, sig_v, loc, loc_next, events, n_ev,
+                    ib, t_stop, sig, s, fresh, n_ev, indeterminate, loc = _cross_breakpoint(
+                        p, y, sig, s, t, t_end, ib, breakpoints, sig_h, sig_v, loc, events, n_ev,
                         max_events, indeterminate,
                     )
                 continue
@@ -415,8 +411,8 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
             t1 = t_stop
 
         # Guards at the end of the step (same piece of the motion as the step).
-        kf = K[dop853.FSAL]  # the right-hand side at (t1, y_new), with its forces
-        guards_from_forces(p, sig, s, y_new, kf[6], kf[7], kf[1], kf[8], kf[9], exceeded, g1)
+        fs = dop853.FSAL  # K[fs] is the right-hand side at (t1, y_new), with its forces
+        guards_from_forces(p, sig, s, y_new, K[fs, 6], K[fs, 7], K[fs, 1], K[fs, 8], K[fs, 9], exceeded, g1)
         # The dense output costs three more right-hand sides: build it only when this step
         # holds an event candidate, a turning point of θ or a saved sample.
         need_dense = s != 0 and (y[3] > 0.0) != (y_new[3] > 0.0)
@@ -509,8 +505,8 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                 K[0, j] = K[dop853.FSAL, j]  # FSAL
             h = h * min(10.0, max(0.2, 0.9 * err ** (-dop853.ERROR_EXPONENT))) if err > 0 else 10.0 * h
             if t >= t_stop and t < t_end:
-                ib, t_stop, sig, s, fresh, n_ev, indeterminate = _cross_breakpoint(
-                    p, y, sig, s, t, t_end, ib, breakpoints, sig_h, sig_v, loc, loc_next, events, n_ev, max_events,
+                ib, t_stop, sig, s, fresh, n_ev, indeterminate, loc = _cross_breakpoint(
+                    p, y, sig, s, t, t_end, ib, breakpoints, sig_h, sig_v, loc, events, n_ev, max_events,
                     indeterminate,
                 )
         else:
