@@ -9,6 +9,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from ..models.regimes import EventKind, Regime
+from ..models.transitions import EV_IMPACT, EV_SETTLE
 from ..solver import compiled as C
 
 _STATUS = {
@@ -153,7 +154,7 @@ class Response:
 
     @property
     def impacts(self) -> list[Impact]:
-        rows = self.event_table[np.isin(self.event_table[:, 1], (C.EV_IMPACT, C.EV_SETTLE))]
+        rows = self.event_table[np.isin(self.event_table[:, 1], (EV_IMPACT, EV_SETTLE))]
         return [Impact(*(float(v) for v in (r[0], r[4], r[5], r[6], r[7], r[8], r[9]))) for r in rows]
 
     @property

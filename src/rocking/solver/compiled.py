@@ -13,19 +13,18 @@ import math
 import numpy as np
 from numba import njit
 
-from ..contact.impact import friction_ratio, impact_coulomb, impact_paper
 from ..excitation.signal import LOCAL_LINEAR, LOCAL_SIZE, local_value, localise
 from ..integrators import dop853
 from ..models.dynamics import (
     evaluate_all,
-    accelerations,
-    floor_forces,
-    kinetic_energy,
     mechanical_energy,
     pedestal_half_width,
-    power,
     pressure_centre,
-    statue_contact,
+)
+from ..models.transitions import (
+    EV_BREAKPOINT,
+    EV_EXCEED,
+    apply_transition,
 )
 from ..models.modes import (
     EXCEED,
@@ -40,7 +39,7 @@ from ..models.modes import (
     select_regime,
     track_threshold_guards,
 )
-from ..models.parameters import ALPHA, B, CAN_SLIDE, ETA, G, H, I_O, IMPACT_COULOMB, M, M2, MU_K, MU_S, MU_TOP, REST_VEL
+from ..models.parameters import ALPHA, B, CAN_SLIDE, G, H, M, MU_S, MU_TOP
 
 # Layout of the summary vector returned by `integrate` (NaN = did not happen).
 (S_STATUS, S_OVERTURN_TIME, S_EXCEED_TIME, S_PEAK_ROTATION, S_PEAK_SLIDING, S_RESIDUAL_SLIDING, S_IMPACTS,
@@ -51,8 +50,6 @@ N_SUMMARY = 28
 
 STATUS_COMPLETED, STATUS_OVERTURNED, STATUS_MAX_EVENTS, STATUS_SINGULAR, STATUS_STEP_FAILED = 0, 1, 2, 3, 4
 
-# Event kinds (see models.regimes.EventKind).
-EV_IMPACT, EV_SLIP, EV_STOP, EV_UPLIFT, EV_EXCEED, EV_FALL, EV_SETTLE, EV_BREAKPOINT = 1, 2, 3, 4, 5, 6, 7, 8
 N_EVENT_FIELDS = 10  # t, kind, regime before, regime after, u̇⁻, u̇⁺, θ̇⁻, θ̇⁺, energy lost, friction ratio
 
 N_STATE = 6  # u, u̇, θ, θ̇, input work W, friction dissipation D
@@ -530,69 +527,26 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                 r_out[n_out] = regime_before
                 n_out += 1
             a, av = _ground(loc, t)
+            sig2, s2, kind, ok, impact, lost, ratio, top, short = apply_transition(
+                p, first, x_first == 0.0, y, sig, s, a, av
+            )
+            if not ok:
+                indeterminate += 1
             if first == FALL:
-                kind = EV_FALL
                 summ[S_OVERTURN_TIME] = t
                 status = STATUS_OVERTURNED
             elif first == EXCEED:
-                kind = EV_EXCEED
                 exceeded = True
                 summ[S_EXCEED_TIME] = t
-            elif first == IMPACT and x_first == 0.0 and abs(y[3]) < p[REST_VEL]:
-                kind = EV_SETTLE
-                y[2] = 0.0
-                y[3] = 0.0
-                s = 0
-                sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
-            elif first == IMPACT:
-                kind = EV_IMPACT
+            elif impact:
                 impacts += 1
-                y[2] = 0.0
-                t_before = kinetic_energy(p, s, y[1], 0.0, y[3])
-                if p[IMPACT_COULOMB] > 0.5:
-                    ud1, thd1, fx, fy, ok = impact_coulomb(
-                        p[I_O], p[M], p[M2], p[B], p[H], p[ETA], p[MU_S], p[MU_K], p[CAN_SLIDE], y[1], y[3]
-                    )
-                    if not ok:
-                        indeterminate += 1
-                else:
-                    ud1, thd1, fx, fy = impact_paper(p[M], p[M2], p[B], p[H], p[ETA], y[1], y[3])
-                ratio = friction_ratio(fx, fy)
-                # The floor must supply this ratio; the paper's law does not check it (P15, O19).
                 impact_floor_ratio = max(impact_floor_ratio, ratio)
-                if p[CAN_SLIDE] > 0.5 and y[1] == 0.0 and ud1 == 0.0 and ratio > p[MU_S]:
-                    impact_short += 1
-                # Impulse on the statue's base: it must not slip on the pedestal either.
-                lx = p[M2] * ((ud1 - y[1]) + p[H] * (thd1 - y[3]))
-                ly = p[M2] * p[B] * (abs(thd1) + abs(y[3]))
-                top_ratio = max(top_ratio, friction_ratio(lx, ly))
-                if p[MU_TOP] >= 0.0 and friction_ratio(lx, ly) > p[MU_TOP] and math.isnan(summ[S_TOP_SLIP]):
+                impact_short += 1 if short else 0
+                top_ratio = max(top_ratio, top)
+                if p[MU_TOP] >= 0.0 and top > p[MU_TOP] and math.isnan(summ[S_TOP_SLIP]):
                     summ[S_TOP_SLIP] = t
-                s = -s
-                y[1] = ud1
-                y[3] = thd1
-                if abs(thd1) < p[REST_VEL]:
-                    kind = EV_SETTLE
-                    y[3] = 0.0
-                    s = 0
-                t_after = kinetic_energy(p, s, y[1], 0.0, y[3])
-                lost = t_before - t_after
-                d_impact += lost
-                sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
-            elif first == STOP:
-                kind = EV_STOP
-                y[1] = 0.0
-                sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
-            elif first <= 1:
-                kind = EV_SLIP
-                sig2, s2, ok = select_regime(p, y, s, a, av, True, False)
-            else:
-                kind = EV_UPLIFT
-                sig2, s2, ok = select_regime(p, y, s, a, av, False, True)
-            if first == IMPACT or first == STOP or first <= 4:
-                if not ok:
-                    indeterminate += 1
-                sig, s = sig2, s2
+            d_impact += lost
+            sig, s = sig2, s2
             if n_ev < max_events + 2:
                 events[n_ev, 0] = t
                 events[n_ev, 1] = kind

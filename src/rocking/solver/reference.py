@@ -82,7 +82,6 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from ..contact.impact import friction_ratio, impact_coulomb, impact_paper
 from ..excitation.base import (
     KIND_HARMONIC,
     KIND_RAMP,
@@ -93,7 +92,7 @@ from ..excitation.base import (
     KIND_ZERO,
 )
 from ..excitation.signal import evaluate
-from ..models.dynamics import accelerations, kinetic_energy
+from ..models.dynamics import accelerations
 from ..models.modes import (
     EXCEED,
     FALL,
@@ -107,19 +106,12 @@ from ..models.modes import (
     evaluate_guards,
     select_regime,
 )
-from ..models.parameters import B, CAN_SLIDE, ETA, H, I_O, IMPACT_COULOMB, M, M2, MU_K, MU_S, REST_VEL, pack
+from ..models.parameters import CAN_SLIDE, pack
 from ..models.regimes import EventKind, Regime
 from ..results.response import Impact
 from ..simulation import Options
+from ..models.transitions import EV_BREAKPOINT, EV_EXCEED, EV_IMPACT, EV_SETTLE, apply_transition
 from .compiled import (
-    EV_BREAKPOINT,
-    EV_EXCEED,
-    EV_FALL,
-    EV_IMPACT,
-    EV_SETTLE,
-    EV_SLIP,
-    EV_STOP,
-    EV_UPLIFT,
     N_EVENT_FIELDS,
 )
 
@@ -470,56 +462,21 @@ def integrate_reference(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, a
             a, av = accel(t)
             regime_before = _regime(sig, s)
             ud_before, thd_before = float(y[1]), float(y[3])
-            lost = 0.0
-            ratio = 0.0
-            sig2, s2, ok = sig, s, True
             if save:
                 record(t, y, regime_before, False)
+            # The transition itself is shared with the compiled solver (models.transitions).
+            sig2, s2, kind, ok, impact, lost, ratio, _, _ = apply_transition(p, fired, False, y, sig, s, a, av)
+            if not ok:
+                st["indeterminate"] += 1
             if fired == FALL:
-                kind = EV_FALL
                 overturn_time = t
                 status = "overturned"
             elif fired == EXCEED:
-                kind = EV_EXCEED
                 st["exceeded"] = True
                 exceed_time = t
-            elif fired == IMPACT:
-                kind = EV_IMPACT
+            if impact:
                 st["impacts"] += 1
-                y[2] = 0.0
-                t_before = kinetic_energy(p, s, y[1], 0.0, y[3])
-                if p[IMPACT_COULOMB] > 0.5:
-                    ud1, thd1, fx, fy, okc = impact_coulomb(
-                        p[I_O], p[M], p[M2], p[B], p[H], p[ETA], p[MU_S], p[MU_K], p[CAN_SLIDE], y[1], y[3]
-                    )
-                    if not okc:
-                        st["indeterminate"] += 1
-                else:
-                    ud1, thd1, fx, fy = impact_paper(p[M], p[M2], p[B], p[H], p[ETA], y[1], y[3])
-                ratio = float(friction_ratio(fx, fy))
-                s = -s
-                y[1] = ud1
-                y[3] = thd1
-                if abs(thd1) < p[REST_VEL]:
-                    kind = EV_SETTLE
-                    y[3] = 0.0
-                    s = 0
-                lost = float(t_before - kinetic_energy(p, s, y[1], 0.0, y[3]))
-                sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
-            elif fired == STOP:
-                kind = EV_STOP
-                y[1] = 0.0
-                sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
-            elif fired <= 1:
-                kind = EV_SLIP
-                sig2, s2, ok = select_regime(p, y, s, a, av, True, False)
-            else:
-                kind = EV_UPLIFT
-                sig2, s2, ok = select_regime(p, y, s, a, av, False, True)
-            if fired not in (FALL, EXCEED):
-                if not ok:
-                    st["indeterminate"] += 1
-                sig, s = int(sig2), int(s2)
+            sig, s = int(sig2), int(s2)
             st["sig"], st["s"] = sig, s
             events.append((t, kind, regime_before, _regime(sig, s), ud_before, float(y[1]), thd_before,
                            float(y[3]), lost, ratio))
