@@ -246,6 +246,10 @@ def _cross_breakpoint(p, y, sig, s, t, t_end, ib, breakpoints, sig_h, sig_v, loc
     loc_next = _localise(sig_h, sig_v, t + 0.5 * (t_stop - t))
     a, av = _ground(loc_next, t)
     a_old, av_old = _ground(loc, t)
+    if abs(a - a_old) + abs(av - av_old) <= 1e-12 * (abs(a) + abs(av) + p[G]):
+        # Continuous here (a sample of a record): every guard is continuous too, so the regime
+        # holds and the last stage of the previous step serves as the first of the next.
+        return ib, t_stop, sig, s, False, n_ev, indeterminate, loc_next
     sig2, s2, ok = select_regime(p, y, s, a, av, False, False)
     if not ok:
         indeterminate += 1
@@ -262,9 +266,7 @@ def _cross_breakpoint(p, y, sig, s, t, t_end, ib, breakpoints, sig_h, sig_v, loc
             events[n_ev, 8] = 0.0
             events[n_ev, 9] = 0.0
             n_ev += 1
-    jump = abs(a - a_old) + abs(av - av_old) > 1e-12 * (abs(a) + abs(av) + p[G])
-    fresh = jump or sig2 != sig or s2 != s
-    return ib, t_stop, sig2, s2, fresh, n_ev, indeterminate, loc_next
+    return ib, t_stop, sig2, s2, True, n_ev, indeterminate, loc_next
 
 
 @njit(cache=True)
