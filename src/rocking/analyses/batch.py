@@ -12,9 +12,7 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
-import os
-from collections.abc import Callable, Iterable, Sequence
-from concurrent.futures import ProcessPoolExecutor
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -24,6 +22,7 @@ from ..models.bodies import System
 from ..results.response import SUMMARY_FIELDS, summary_values
 from ..simulation import Options, prepare
 from ..solver.compiled import N_SUMMARY, integrate
+from .executors import as_executor, default_workers
 
 Case = tuple[System, AbstractMotion]
 
@@ -46,40 +45,19 @@ def _chunks(cases: Sequence[Case], size: int) -> list[Sequence[Case]]:
     return [cases[i : i + size] for i in range(0, len(cases), size)]
 
 
-def _default_workers() -> int:
-    return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1))
-
-
 def map_chunks(
     fn: Callable[[Any], np.ndarray],
     payloads: list[Any],
     workers: int | Any | None,
     progress: Callable[[int], None] | None = None,
 ) -> list[np.ndarray]:
-    """Apply ``fn`` to every payload on the chosen workers, in order; ``progress(n_done_payloads)``."""
-    if workers is None:
-        workers = _default_workers()
-    if type(workers).__module__.split(".")[0] == "distributed":
-        # A bare dask.distributed Client: its map returns futures, the executor gathers them.
-        from .executors import DaskExecutor
-
-        workers = DaskExecutor(workers)
+    """Apply ``fn`` to every payload on the chosen workers (see :func:`executors.as_executor`),
+    in order; ``progress(n_done_payloads)`` after each."""
     results: list[np.ndarray] = []
-    if hasattr(workers, "map"):
-        iterator: Iterable[np.ndarray] = workers.map(fn, payloads)
-    elif int(workers) <= 1 or len(payloads) <= 1:
-        iterator = map(fn, payloads)
-    else:
-        pool = ProcessPoolExecutor(max_workers=int(workers))
-        iterator = pool.map(fn, payloads)
-    try:
-        for r in iterator:
-            results.append(r)
-            if progress is not None:
-                progress(len(results))
-    finally:
-        if not hasattr(workers, "map") and isinstance(workers, int) and workers > 1 and len(payloads) > 1:
-            pool.shutdown()
+    for r in as_executor(workers).map(fn, payloads):
+        results.append(r)
+        if progress is not None:
+            progress(len(results))
     return results
 
 
@@ -123,7 +101,7 @@ def run_cases(
         raise ValueError("run_cases needs at least one case")
     nw = 1 if workers is None and n < 64 else workers
     if chunk_size is None:
-        per = _default_workers() if nw is None else (int(nw) if not hasattr(nw, "map") else 8)
+        per = default_workers() if nw is None else (int(nw) if not hasattr(nw, "map") else 8)
         chunk_size = max(1, min(2000, math.ceil(n / (4 * max(1, per)))))
     chunks = _chunks(cases, chunk_size)
     payloads = [(c, options, duration) for c in chunks]
