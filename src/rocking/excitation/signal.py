@@ -60,7 +60,7 @@ LOCAL_ZERO, LOCAL_LINEAR, LOCAL_COSINE, LOCAL_RICKER = 0.0, 1.0, 2.0, 3.0
 LOCAL_SIZE = 5
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def localise(kind, params, times, values, piece):
     """The formula valid on the piece containing time ``piece``, as a 5-tuple:
     (LOCAL_LINEAR, a0, slope, t0, 0) for a0 + slope·(t − t0); (LOCAL_COSINE, A, ω, φ, 0);

@@ -295,7 +295,7 @@ def advance(y, K, h, y_new):
         y_new[j] = y[j] + h * acc
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def error_norm(y, y_new, K, h, rtol, atol, n_controlled):
     """Hairer's combined error estimate, the RMS over the first ``n_controlled`` components.
 

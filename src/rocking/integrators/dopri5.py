@@ -55,7 +55,7 @@ def stage_input(y, K, h, stage, out):
         out[j] = y[j] + h * acc
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def advance(y, K, h, y_new):
     """5th-order solution y + h·Σ b_k K[k] into ``y_new``."""
     for j in range(y.shape[0]):
@@ -65,7 +65,7 @@ def advance(y, K, h, y_new):
         y_new[j] = y[j] + h * acc
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def error_norm(y, y_new, K, h, rtol, atol, n_controlled):
     """RMS of the local error estimate scaled by atol + rtol·max(|y|, |y_new|)."""
     total = 0.0
@@ -89,3 +89,33 @@ def dense(y, K, h, x, out):
         for k in range(7):
             acc += K[k, j] * (P[k, 0] * x + P[k, 1] * x2 + P[k, 2] * x3 + P[k, 3] * x4)
         out[j] = y[j] + h * acc
+
+
+@njit(cache=True)
+def prepare_dense_nested(y, K, h, F):
+    """The dense output of the step written in DOP853's nested form (see ``dop853.dense``), so one
+    evaluator serves both methods: y + x(F0 + (1−x)(F1 + x(F2 + (1−x)F3))), F4…F6 = 0.
+
+    With the quartic y + c1 x + c2 x² + c3 x³ + c4 x⁴ of this method, F3 = c4,
+    F2 = −c3 − 2c4, F1 = −c2 − c3 − c4 and F0 = c1 + c2 + c3 + c4.
+    """
+    for j in range(y.shape[0]):
+        c1 = 0.0
+        c2 = 0.0
+        c3 = 0.0
+        c4 = 0.0
+        for k in range(7):
+            c1 += K[k, j] * P[k, 0]
+            c2 += K[k, j] * P[k, 1]
+            c3 += K[k, j] * P[k, 2]
+            c4 += K[k, j] * P[k, 3]
+        c1 *= h
+        c2 *= h
+        c3 *= h
+        c4 *= h
+        F[0, j] = c1 + c2 + c3 + c4
+        F[1, j] = -c2 - c3 - c4
+        F[2, j] = -c3 - 2.0 * c4
+        F[3, j] = c4
+        for k in range(4, F.shape[0]):
+            F[k, j] = 0.0

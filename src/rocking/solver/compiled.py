@@ -14,7 +14,7 @@ import numpy as np
 from numba import njit
 
 from ..excitation.signal import LOCAL_LINEAR, LOCAL_SIZE, local_value, localise
-from ..integrators import dop853
+from ..integrators import dop853, dopri5
 from ..models.dynamics import (
     evaluate_all,
     mechanical_energy,
@@ -53,10 +53,11 @@ STATUS_COMPLETED, STATUS_OVERTURNED, STATUS_MAX_EVENTS, STATUS_SINGULAR, STATUS_
 N_EVENT_FIELDS = 10  # t, kind, regime before, regime after, u̇⁻, u̇⁺, θ̇⁻, θ̇⁺, energy lost, friction ratio
 
 N_STATE = 6  # u, u̇, θ, θ̇, input work W, friction dissipation D
+FSAL5 = 6  # row of K holding rhs(t + h, y_new) after a Dormand–Prince 5(4) step
 N_DIAG = 7  # extra right-hand-side outputs: a_g, a_v, F, N, P_x, P_y, ok (not integrated)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _localise(sig_h, sig_v, piece):
     """Coefficients of the horizontal and vertical floor motion on the piece containing
     ``piece``, as one 10-tuple (see signal.localise)."""
@@ -65,7 +66,7 @@ def _localise(sig_h, sig_v, piece):
     return localise(kh, ph, th, vh, piece) + localise(kv, pv, tv, vv, piece)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _ground(loc, t):
     """(a_g, a_v) at time t, m/s²."""
     return local_value(loc, 0, t), local_value(loc, LOCAL_SIZE, t)
@@ -91,34 +92,55 @@ def rhs(t, y, p, sig, s, loc, out):
     out[5] = p_fric
 
 
-@njit(cache=True)
-def _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin):
-    """One DOP853 step; K[0] = rhs(t, y) on entry, K[FSAL] = rhs(t + h, y_new) on exit.
-    ``gmin`` receives the smallest values of the threshold guards at the interior stages."""
+@njit(cache=True, inline="always")
+def _stages(t, y, h, K, work, p, sig, s, loc, gmin, c, a_tab, n_stages):
+    """Stages 1…n_stages−1 of an explicit Runge–Kutta step (tableau c, a_tab) into K, with the
+    threshold guards and the top-face friction ratio tracked at every stage into ``gmin``."""
     for i in range(N_GUARDS):
         gmin[i] = np.inf
     gmin[N_GUARDS] = 0.0
-    for stage in range(1, dop853.N_STAGES):
-        dop853.stage_input(y, K, h, stage, work)
-        ts = t + dop853.C[stage] * h
+    n = y.shape[0]
+    for stage in range(1, n_stages):
+        for j in range(n):
+            acc = 0.0
+            for k in range(stage):
+                acc += a_tab[stage, k] * K[k, j]
+            work[j] = y[j] + h * acc
+        ts = t + c[stage] * h
         # The right-hand side written out here rather than called: in this innermost loop a
         # function call per stage costs as much as the physics itself.
         a = local_value(loc, 0, ts)
         av = local_value(loc, LOCAL_SIZE, ts)
-        udd, thdd, ok, f, n, px, py, p_in, p_fric = evaluate_all(p, sig, s, work[1], work[2], work[3], a, av)
+        udd, thdd, ok, f, nn, px, py, p_in, p_fric = evaluate_all(p, sig, s, work[1], work[2], work[3], a, av)
         K[stage, 0] = work[1]
         K[stage, 1] = udd
         K[stage, 2] = work[3]
         K[stage, 3] = thdd
         K[stage, 4] = p_in
         K[stage, 5] = p_fric
-        track_threshold_guards(p, sig, s, work, a, av, udd, f, n, gmin)
+        track_threshold_guards(p, sig, s, work, a, av, udd, f, nn, gmin)
         # The friction the statue's base needs peaks between step ends: sample it at the stages
         # (while |θ| ≤ α: beyond, the statue is toppling and the ratio is no design quantity).
         if py > 0.0 and abs(work[2]) <= p[ALPHA]:
             gmin[N_GUARDS] = max(gmin[N_GUARDS], abs(px) / py)
+
+
+@njit(cache=True, inline="always")
+def _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin):
+    """One DOP853 step; K[0] = rhs(t, y) on entry, K[FSAL] = rhs(t + h, y_new) on exit.
+    ``gmin`` receives the smallest values of the threshold guards at the interior stages."""
+    _stages(t, y, h, K, work, p, sig, s, loc, gmin, dop853.C, dop853.A, dop853.N_STAGES)
     dop853.advance(y, K, h, y_new)
     rhs(t + h, y_new, p, sig, s, loc, K[dop853.FSAL])
+
+
+@njit(cache=True, inline="always")
+def _step5(t, y, h, K, work, y_new, p, sig, s, loc, gmin):
+    """One Dormand–Prince 5(4) step (FSAL row 6): for steps cut short by a sample of a record,
+    where 12 stages would buy accuracy the short step already has."""
+    _stages(t, y, h, K, work, p, sig, s, loc, gmin, dopri5.C, dopri5.A, 6)
+    dopri5.advance(y, K, h, y_new)
+    rhs(t + h, y_new, p, sig, s, loc, K[FSAL5])
 
 
 @njit(cache=True)
@@ -234,7 +256,7 @@ def _theta_dot_root(y0, F, work):
     return 0.5 * (lo + hi)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _cross_breakpoint(p, y, sig, s, t, t_end, ib, breakpoints, sig_h, sig_v, loc, events, n_ev, max_events,
                       indeterminate):
     """At a breakpoint of the floor motion — a sample time of a record (continuous) or a jump
@@ -388,18 +410,30 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                         max_events, indeterminate,
                     )
                 continue
-        h = min(h, max_step, t_stop - t)
+        h_wanted = min(h, max_step)
+        h = min(h_wanted, t_stop - t)
         # Avoid a sliver of a step before a breakpoint.
         if t_stop - (t + h) < 1e-3 * h:
             h = t_stop - t
-        _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin)
-        err = dop853.error_norm(y, y_new, K, h, rtol, atol, 4)
+        # A step cut well short by a breakpoint (a record sample) needs far less than DOP853's
+        # 12 stages for the same accuracy: take a 5th-order step there.
+        low_order = h < h_wanted
+        if low_order:
+            _step5(t, y, h, K, work, y_new, p, sig, s, loc, gmin)
+            err = dopri5.error_norm(y, y_new, K, h, rtol, atol, 4)
+            exponent = 0.2
+            fs = FSAL5
+        else:
+            _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin)
+            err = dop853.error_norm(y, y_new, K, h, rtol, atol, 4)
+            exponent = dop853.ERROR_EXPONENT
+            fs = dop853.FSAL
         if not (err <= 1.0):
             rejected += 1
             if not math.isfinite(err):
                 h *= 0.1
             else:
-                h *= max(0.2, 0.9 * err ** (-dop853.ERROR_EXPONENT))
+                h *= max(0.2, 0.9 * err ** (-exponent))
             if h < 1e-14 * max(1.0, abs(t)):
                 status = STATUS_STEP_FAILED
                 break
@@ -410,7 +444,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
             t1 = t_stop
 
         # Guards at the end of the step (same piece of the motion as the step).
-        fs = dop853.FSAL  # K[fs] is the right-hand side at (t1, y_new), with its forces
+        # K[fs] is the right-hand side at (t1, y_new), with its forces
         guards_from_forces(p, sig, s, y_new, K[fs, 6], K[fs, 7], K[fs, 1], K[fs, 8], K[fs, 9], exceeded, g1)
         # The dense output costs three more right-hand sides: build it only when this step
         # holds an event candidate, a turning point of θ or a saved sample.
@@ -421,7 +455,10 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
         if save and next_grid < n_grid and t0 + next_grid * save_dt <= t1 + 1e-12 * h:
             need_dense = True
         if need_dense:
-            _prepare_dense(t, y, y_new, h, K, work, F, p, sig, s, loc)
+            if low_order:
+                dopri5.prepare_dense_nested(y, K, h, F)
+            else:
+                _prepare_dense(t, y, y_new, h, K, work, F, p, sig, s, loc)
         first = -1
         x_first = 2.0
         for i in range(N_GUARDS):
@@ -501,8 +538,11 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                 if g1[i] > 0.0:
                     armed[i] = True
             for j in range(N_STATE):
-                K[0, j] = K[dop853.FSAL, j]  # FSAL
-            h = h * min(10.0, max(0.2, 0.9 * err ** (-dop853.ERROR_EXPONENT))) if err > 0 else 10.0 * h
+                K[0, j] = K[fs, j]  # FSAL
+            if low_order:
+                h = h_wanted  # the cut was the breakpoint's, not the accuracy's
+            else:
+                h = h * min(10.0, max(0.2, 0.9 * err ** (-exponent))) if err > 0 else 10.0 * h
             if t >= t_stop and t < t_end:
                 ib, t_stop, sig, s, fresh, n_ev, indeterminate, loc = _cross_breakpoint(
                     p, y, sig, s, t, t_end, ib, breakpoints, sig_h, sig_v, loc, events, n_ev, max_events,
