@@ -116,7 +116,7 @@ def test_12b_held_pedestal_margin_is_small():
     # Worked check of derivation §3.5 for 12b: stuck pedestal, statue starting to rock at t = 0⁺
     # (θ = θ̇ = 0, s = −1): the friction demand is just below μs·N with the full normal force.
     st = case_named("12b").statue()
-    m1, m2, b, h, R = TABLE_1.pedestal_mass, st.mass, st.b, st.h, st.semi_diagonal
+    m1, m2, _b, _h, R = TABLE_1.pedestal_mass, st.mass, st.b, st.h, st.semi_diagonal
     M, I_O, alpha = m1 + m2, st.inertia_about_corner, st.slenderness
     s, phi = -1, alpha
     thdd = -m2 * R * (math.cos(phi) * A + s * math.sin(phi) * G) / I_O

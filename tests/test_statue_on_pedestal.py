@@ -1,7 +1,6 @@
 """The two-block model (paper §3): limits O16, never-rocks O17, frictionless invariants O18,
 impact friction O19, the equations against an independent sympy derivation, energy and symmetry."""
 
-import math
 
 import numpy as np
 import pytest
@@ -12,7 +11,7 @@ from oracles import lagrange
 import rocking as rk
 from rocking.models import dynamics
 from rocking.models.parameters import pack
-from rocking.models.regimes import EventKind, Regime
+from rocking.models.regimes import Regime
 
 FLOOR = rk.Friction(static=0.4, kinetic=0.3)
 PAPER_MOTION = rk.Harmonic(amplitude=6.75, frequency=1.2, cycles=30)
