@@ -72,7 +72,7 @@ def _ground(loc, t):
     return local_value(loc, 0, t), local_value(loc, LOCAL_SIZE, t)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def rhs(t, y, p, sig, s, loc, out):
     """dy/dt into ``out``; out[6:] receives (a_g, a_v, F, N, P_x, P_y, ok) for guards and checks."""
     a, av = _ground(loc, t)
@@ -125,7 +125,7 @@ def _stages(t, y, h, K, work, p, sig, s, loc, gmin, c, a_tab, n_stages):
             gmin[N_GUARDS] = max(gmin[N_GUARDS], abs(px) / py)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin):
     """One DOP853 step; K[0] = rhs(t, y) on entry, K[FSAL] = rhs(t + h, y_new) on exit.
     ``gmin`` receives the smallest values of the threshold guards at the interior stages."""
@@ -134,7 +134,7 @@ def _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin):
     rhs(t + h, y_new, p, sig, s, loc, K[dop853.FSAL])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _step5(t, y, h, K, work, y_new, p, sig, s, loc, gmin):
     """One Dormand–Prince 5(4) step (FSAL row 6): for steps cut short by a sample of a record,
     where 12 stages would buy accuracy the short step already has."""
