@@ -412,3 +412,24 @@ def test_record_with_units_and_format_overrides():
     # the units override wins over the header ("IN UNITS OF G")
     _, m2, _, _ = load_config(_mutated(("motion",), {"kind": "record", "path": RINALDI, "units": "cm/s2"})).to_specs()
     assert m2.pga == pytest.approx(read_record(RINALDI).pga / 9.80665 * 0.01)
+
+
+def test_vertical_component_from_a_second_record(tmp_path):
+    """A vertical record with the same samples is attached and scaled with the horizontal one."""
+    import numpy as np
+
+    from rocking.io.config import ConfigError, load_config
+
+    t = np.arange(0, 2.0, 0.01)
+    (tmp_path / "h.txt").write_text("Time[s] Accel[g]\n" + "\n".join(f"{x:.2f} {0.3*np.sin(6*x):.6f}" for x in t))
+    (tmp_path / "v.txt").write_text("Time[s] Accel[g]\n" + "\n".join(f"{x:.2f} {0.1*np.cos(9*x):.6f}" for x in t))
+    (tmp_path / "v_short.txt").write_text("Time[s] Accel[g]\n" + "\n".join(f"{x:.2f} 0.0" for x in t[:50]))
+    base = {"statue": {"width": 0.3, "height": 1.2, "mass": 10.0},
+            "motion": {"kind": "record", "path": "h.txt", "vertical_path": "v.txt", "scale": 2.0}}
+    cfg = load_config(base, base_dir=tmp_path)
+    _, motion, _, _ = cfg.to_specs()
+    assert motion.vertical is not None
+    np.testing.assert_allclose(motion.vertical_acceleration(np.array([0.5])), 2.0 * 0.1 * np.cos(4.5) * 9.80665, rtol=1e-4)  # file holds 6 decimals of g
+    base["motion"]["vertical_path"] = "v_short.txt"
+    with pytest.raises(ConfigError, match="motion.vertical_path.*share their samples"):
+        load_config(base, base_dir=tmp_path).to_specs()

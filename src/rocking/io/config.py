@@ -49,6 +49,8 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Annotated, Any, Literal, Union
 
+import numpy as np
+
 from pydantic import (
     BaseModel,
     ConfigDict,
@@ -63,6 +65,7 @@ from pydantic import (
 )
 
 from ..contact.friction import Friction
+from ..excitation.record import GroundMotion
 from ..excitation.harmonic import Harmonic
 from ..excitation.pulses import CosinePulse, RectanglePulse, RickerPulse, SinePulse
 from ..models.bodies import Pedestal, Statue, System
@@ -179,8 +182,10 @@ class RecordConfig(_Section):
     pga: Positive | None = None
     units: str | None = None
     format: str | None = None
+    vertical_path: Annotated[str, Field(min_length=1)] | None = None  # vertical component, same samples
+    vertical_units: str | None = None
 
-    @field_validator("units")
+    @field_validator("units", "vertical_units")
     @classmethod
     def _known_units(cls, v: str | None) -> str | None:
         if v is not None:
@@ -413,12 +418,36 @@ class Config(_Section):
             raise ConfigError([("motion.format", str(exc))], src) from None
         except OSError as exc:
             raise ConfigError([("motion.path", f"cannot read {file}: {exc.strerror or exc}")], src) from None
+        if m.vertical_path is not None:
+            record = self._with_vertical(record, m)
         with _field("motion", src):
             if m.scale is not None:
                 record = record.scaled(m.scale)
             elif m.pga is not None:
                 record = record.scaled(pga=m.pga)
         return record
+
+
+    def _with_vertical(self, record: Any, m: RecordConfig) -> Any:
+        """The horizontal record with the vertical component of ``vertical_path`` attached; both
+        must share their samples (the usual case for the components of one station)."""
+        src = self._source
+        file = _resolve_record_path(m.vertical_path, self.base_dir, src)
+        try:
+            vertical = read_record(file, format=m.format, units=m.vertical_units)
+        except RecordError as exc:
+            raise ConfigError([("motion.vertical_path", str(exc))], src) from None
+        except OSError as exc:
+            raise ConfigError([("motion.vertical_path", f"cannot read {file}: {exc.strerror or exc}")], src) from None
+        if vertical.time.size != record.time.size or not np.allclose(vertical.time, record.time, rtol=0, atol=1e-9):
+            raise ConfigError(
+                [("motion.vertical_path", f"{file} has {vertical.time.size} samples at dt = {vertical.dt} s; the "
+                  f"horizontal record has {record.time.size} at dt = {record.dt} s: the components must share "
+                  "their samples")],
+                src,
+            )
+        return GroundMotion(time=record.time, values=record.values, vertical=vertical.values, name=record.name,
+                            source=record.source, units=record.units, meta=dict(record.meta))
 
 
 # ----------------------------------------------------------------------------- loading
