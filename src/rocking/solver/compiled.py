@@ -33,6 +33,8 @@ from ..models.modes import (
     N_GUARDS,
     ROCK_TO_NEGATIVE,
     ROCK_TO_POSITIVE,
+    SLIP_TO_NEGATIVE,
+    SLIP_TO_POSITIVE,
     STOP,
     evaluate_guards,
     guards_from_forces,
@@ -315,9 +317,9 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
     # this close to zero (3 % of the guard's natural scale): the cost stays with grazing steps.
     near = np.full(N_GUARDS, -np.inf)
     if p[CAN_SLIDE] > 0.5:
-        near[0] = near[1] = 0.03 * p[MU_S] * p[M] * p[G]
+        near[SLIP_TO_NEGATIVE] = near[SLIP_TO_POSITIVE] = 0.03 * p[MU_S] * p[M] * p[G]
         near[STOP] = 1e-3
-    near[3] = near[4] = 0.03 * p[G] * math.tan(p[ALPHA])
+    near[ROCK_TO_NEGATIVE] = near[ROCK_TO_POSITIVE] = 0.03 * p[G] * math.tan(p[ALPHA])
     armed = np.ones(N_GUARDS, dtype=np.bool_)
 
     n_grid = int(math.floor((t_end - t0) / save_dt + 1e-9)) + 1 if save else 0
@@ -484,7 +486,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                     # A friction or rocking threshold exactly tied when the regime was chosen
                     # (e.g. a pulse whose phase starts rocking at t = 0) and crossed right away:
                     # the regime ends at the start of the step.
-                    if i <= 1 or i == ROCK_TO_NEGATIVE or i == ROCK_TO_POSITIVE:
+                    if i in (SLIP_TO_NEGATIVE, SLIP_TO_POSITIVE, ROCK_TO_NEGATIVE, ROCK_TO_POSITIVE):
                         if g1[i] < 0.0:
                             x_first, first = 0.0, i
                     elif i == IMPACT and g1[i] < 0.0:
