@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba import njit
 
 from .dynamics import accelerations, floor_forces, friction_normal
@@ -107,21 +106,21 @@ def select_regime(p, y, s_now, a, av, forbid_stick, forbid_rest):
     f0, _ = floor_forces(p, s_guess, theta, theta_dot, a, av, udd0, thdd0)
     sig_pref = -_sign(f0)
 
-    sig_list = np.zeros(3, dtype=np.int64)
-    n_sig = 0
+    # Candidate lists are tuples, not arrays: this runs at every event, and allocating there
+    # costs more than the physics.
     if moving:
-        sig_list[0] = 1 if u_dot > 0.0 else -1
+        sig_list = (1 if u_dot > 0.0 else -1, 0, 0)
         n_sig = 1
     elif p[CAN_SLIDE] < 0.5:
+        sig_list = (0, 0, 0)
         n_sig = 1
     elif forbid_stick:
         # The friction cone was just left: the slip direction is the preferred one, even if
         # the tie at this instant makes σ·ü vanish to rounding.
-        sig_list[0] = sig_pref
+        sig_list = (sig_pref, 0, 0)
         n_sig = 1
     else:
-        sig_list[1] = sig_pref
-        sig_list[2] = -sig_pref
+        sig_list = (0, sig_pref, -sig_pref)
         n_sig = 3
 
     first_sig, first_s = sig_list[0], s_guess
@@ -131,20 +130,17 @@ def select_regime(p, y, s_now, a, av, forbid_stick, forbid_rest):
     for i in range(n_sig):
         sig = sig_list[i]
         # Statue candidates, preferred rocking direction opposite to the base acceleration.
-        s_list = np.zeros(3, dtype=np.int64)
-        n_s = 0
         if rocking:
-            s_list[0] = s_now
+            s_list = (s_now, 0, 0)
             n_s = 1
         else:
             udd_r, _, _ = accelerations(p, sig, 0, u_dot, theta, theta_dot, a, av)
             s_pref = -_sign(a + udd_r)
             if forbid_rest:
-                s_list[0] = s_pref
+                s_list = (s_pref, 0, 0)
                 n_s = 1
             else:
-                s_list[1] = s_pref
-                s_list[2] = -s_pref
+                s_list = (0, s_pref, -s_pref)
                 n_s = 3
         for j in range(n_s):
             s = s_list[j]
