@@ -309,6 +309,23 @@ def _cross_breakpoint(p, y, sig, s, t, t_end, ib, breakpoints, sig_h, sig_v, loc
 
 
 @njit(cache=True)
+def _hold(t_out, y_out, r_out, n_out, cap, next_grid, n_grid, t0, save_dt, t_limit, y, regime, t_fixed):
+    """Save the grid points up to ``t_limit`` while the state ``y`` does not change (at rest, or
+    the last point reached only up to rounding), stamped with their grid times, or with
+    ``t_fixed`` when it is not NaN. Returns (n_out, next_grid)."""
+    while next_grid < n_grid and n_out < cap:
+        tg = t0 + next_grid * save_dt
+        if tg > t_limit:
+            break
+        t_out[n_out] = tg if math.isnan(t_fixed) else t_fixed
+        y_out[n_out, :] = y[:4]
+        r_out[n_out] = regime
+        n_out += 1
+        next_grid += 1
+    return n_out, next_grid
+
+
+@njit(cache=True)
 def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_step, save_dt, save, max_events):
     """Integrate the hybrid system from t0 to t_end.
 
@@ -409,15 +426,8 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
                     quiet = False
             if quiet:
                 if save:
-                    while next_grid < n_grid and n_out < cap:
-                        tg = t0 + next_grid * save_dt
-                        if tg > t_stop + 1e-12:
-                            break
-                        t_out[n_out] = tg
-                        y_out[n_out, :] = y[:4]
-                        r_out[n_out] = 0
-                        n_out += 1
-                        next_grid += 1
+                    n_out, next_grid = _hold(t_out, y_out, r_out, n_out, cap, next_grid, n_grid, t0, save_dt,
+                                             t_stop + 1e-12, y, 0, math.nan)
                 t = t_stop
                 for i in range(N_GUARDS):
                     g0[i] = g1[i]
@@ -666,15 +676,8 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
 
     if save and status != STATUS_OVERTURNED:
         # Last grid point(s) reached exactly at t_end.
-        while next_grid < n_grid and n_out < cap:
-            tg = t0 + next_grid * save_dt
-            if tg > t + 1e-9:
-                break
-            t_out[n_out] = t
-            y_out[n_out, :] = y[:4]
-            r_out[n_out] = _regime(sig, s)
-            n_out += 1
-            next_grid += 1
+        n_out, next_grid = _hold(t_out, y_out, r_out, n_out, cap, next_grid, n_grid, t0, save_dt, t + 1e-9, y,
+                                 _regime(sig, s), t)
 
     summ[S_STATUS] = status
     summ[S_PEAK_ROTATION] = peak_theta
