@@ -321,7 +321,7 @@ def error_norm(y, y_new, K, h, rtol, atol, n_controlled):
     return abs(h) * s5 / np.sqrt((s5 + 0.01 * s3) * n_controlled)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def extra_stage_input(y, K, h, j, out):
     """State at which extra stage ``j`` (0…2) of the dense output is evaluated:
     y + h·Σ_k A_EXTRA[j, k]·K[k] over k < 13 + j.
@@ -339,7 +339,7 @@ def extra_stage_input(y, K, h, j, out):
         out[i] = y[i] + h * acc
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def prepare_dense(y, y_new, K, h, F):
     """Coefficients F (INTERPOLATOR_POWER × n) of the 7th-order interpolant of the step.
 
@@ -362,7 +362,7 @@ def prepare_dense(y, y_new, K, h, F):
             F[3 + i, j] = h * acc
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def dense(y, F, x, out):
     """Interpolated state at t + x·h, 0 ≤ x ≤ 1, into ``out`` (F from :func:`prepare_dense`).
 

@@ -39,7 +39,7 @@ P = np.array(
 ORDER = 5
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def stage_input(y, K, h, stage, out):
     """State at which stage ``stage`` (1…5) is evaluated: y + h·Σ_k A[stage, k]·K[k].
 
@@ -78,7 +78,7 @@ def error_norm(y, y_new, K, h, rtol, atol, n_controlled):
     return np.sqrt(total / n_controlled)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def dense(y, K, h, x, out):
     """Interpolated state at t + x·h, 0 ≤ x ≤ 1, into ``out``."""
     x2 = x * x
@@ -91,7 +91,7 @@ def dense(y, K, h, x, out):
         out[j] = y[j] + h * acc
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def prepare_dense_nested(y, K, h, F):
     """The dense output of the step written in DOP853's nested form (see ``dop853.dense``), so one
     evaluator serves both methods: y + x(F0 + (1−x)(F1 + x(F2 + (1−x)F3))), F4…F6 = 0.

@@ -29,7 +29,7 @@ SLIP_TO_NEGATIVE, SLIP_TO_POSITIVE, STOP, ROCK_TO_NEGATIVE, ROCK_TO_POSITIVE, IM
 N_GUARDS = 8
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def evaluate_guards(p, sig, s, y, a, av, exceeded, out):
     """Fill ``out`` (length N_GUARDS) with the guard values; inactive guards are +1."""
     udd, thdd, _ = accelerations(p, sig, s, y[1], y[2], y[3], a, av)
@@ -86,7 +86,7 @@ def _sign(x):
     return 1 if x > 0.0 else -1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def select_regime(p, y, s_now, a, av, forbid_stick, forbid_rest):
     """Return (sig, s, consistent) for the state y at an instant with floor accelerations a, av.
 

@@ -17,7 +17,7 @@ from .parameters import B, CAN_SLIDE, ETA, H, I_O, IMPACT_COULOMB, M, M2, MU_K, 
 EV_IMPACT, EV_SLIP, EV_STOP, EV_UPLIFT, EV_EXCEED, EV_FALL, EV_SETTLE, EV_BREAKPOINT = 1, 2, 3, 4, 5, 6, 7, 8
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def apply_transition(p, guard, at_step_start, y, sig, s, a, av):
     """Apply the transition of ``guard`` (an index of models.modes) to the state ``y`` (changed in
     place) with the floor accelerations (a, av) at that instant.
