@@ -100,3 +100,47 @@ def local_value(loc, k0, t):
         x = (math.pi * loc[k0 + 2] * (t - loc[k0 + 3])) ** 2
         return loc[k0 + 1] * (1.0 - 2.0 * x) * math.exp(-x)
     return 0.0
+
+
+# Phase margin (rad) kept before a cosine leaves a band: arccos loses about √ε ≈ 1e-8 rad near
+# ±1, so stopping 1e-6 rad short can never overshoot the exit.
+_PHASE_MARGIN = 1e-6
+
+
+@njit(cache=True, inline="always")
+def cosine_band_exit(amplitude, omega, phase, t, t_stop, lo, hi):
+    """A time in [t, t_stop] up to which A·cos(ω τ + φ) stays strictly inside (lo, hi) for
+    every τ from t: ``t_stop`` if it never leaves the band before then, otherwise a time just
+    short of (within 1e-6 rad of phase of) the first exit. Returns t when the value is not
+    inside the band at t. Units: s, rad/s, rad, and the signal's unit for lo, hi."""
+    if amplitude < 0.0:
+        amplitude, phase = -amplitude, phase + math.pi
+    if omega <= 0.0 or t_stop <= t:
+        return t
+    psi0 = omega * t + phase
+    now = amplitude * math.cos(psi0)
+    if not (lo < now < hi):
+        return t
+    if amplitude < hi and -amplitude > lo:
+        return t_stop
+    two_pi = 2.0 * math.pi
+    r = psi0 - two_pi * math.floor(psi0 / two_pi)  # phase in [0, 2π)
+    # The band is left upwards on entering [2kπ − β, 2kπ + β] (A cos ψ ≥ hi), downwards on
+    # entering [2kπ + γ, 2kπ + 2π − γ] (A cos ψ ≤ lo); r lies outside both.
+    to_exit = math.inf
+    if amplitude >= hi:
+        beta = math.acos(max(-1.0, min(1.0, hi / amplitude)))
+        start = two_pi - beta
+        while start < r:
+            start += two_pi
+        to_exit = start - r
+    if -amplitude <= lo:
+        gamma = math.acos(max(-1.0, min(1.0, lo / amplitude)))
+        start = gamma
+        while start < r:
+            start += two_pi
+        to_exit = min(to_exit, start - r)
+    to_exit -= _PHASE_MARGIN
+    if to_exit <= 0.0:
+        return t
+    return min(t_stop, t + to_exit / omega)

@@ -369,14 +369,28 @@ def dense(y, F, x, out):
     The interpolant alternates the factors x and 1 − x (scipy's ``Dop853DenseOutput``):
     y + x·(F0 + (1−x)·(F1 + x·(F2 + (1−x)·(F3 + x·(F4 + (1−x)·(F5 + x·F6)))))).
     """
+    # Row by row across the components (not component by component through the rows): the
+    # components' Horner chains are independent, so the processor overlaps them.
     xm = 1.0 - x
     m = F.shape[0]
-    for j in range(y.shape[0]):
-        acc = 0.0
-        for i in range(m):
-            acc += F[m - 1 - i, j]
-            if i % 2 == 0:
-                acc *= x
-            else:
-                acc *= xm
-        out[j] = y[j] + acc
+    n = y.shape[0]
+    for j in range(n):
+        out[j] = F[m - 1, j] * x
+    for i in range(1, m):
+        factor = x if i % 2 == 0 else xm
+        row = m - 1 - i
+        for j in range(n):
+            out[j] = (out[j] + F[row, j]) * factor
+    for j in range(n):
+        out[j] += y[j]
+
+
+@njit(cache=True, inline="always")
+def dense_component(y, F, x, j):
+    """Component ``j`` of :func:`dense` alone (event functions often need one state variable)."""
+    xm = 1.0 - x
+    m = F.shape[0]
+    acc = F[m - 1, j] * x
+    for i in range(1, m):
+        acc = (acc + F[m - 1 - i, j]) * (x if i % 2 == 0 else xm)
+    return y[j] + acc

@@ -55,11 +55,19 @@ def guards_from_forces(p, sig, s, y, a, av, udd, f, n, exceeded, out):
         out[ROCK_TO_NEGATIVE] = threshold - base
         out[ROCK_TO_POSITIVE] = threshold + base
     else:
-        theta = y[2]
-        out[IMPACT] = s * theta
-        if not exceeded:
-            out[EXCEED] = p[ALPHA] - abs(theta)
-        out[FALL] = 0.5 * math.pi - abs(theta)
+        for i in range(IMPACT, N_GUARDS):
+            out[i] = angle_guard(p, s, i, y[2], exceeded)
+
+
+@njit(cache=True, inline="always")
+def angle_guard(p, s, index, theta, exceeded):
+    """The guards of a rocking statue that depend on θ alone (index IMPACT, EXCEED or FALL):
+    S·θ (impact), α − |θ| (statically unstable, until first exceeded), π/2 − |θ| (fallen)."""
+    if index == IMPACT:
+        return s * theta
+    if index == EXCEED:
+        return 1.0 if exceeded else p[ALPHA] - abs(theta)
+    return 0.5 * math.pi - abs(theta)
 
 
 @njit(cache=True, inline="always")
@@ -164,3 +172,23 @@ def select_regime(p, y, s_now, a, av, forbid_stick, forbid_rest):
                     continue
             return sig, s, True
     return first_sig, first_s, False
+
+
+@njit(cache=True, _nrt=False)
+def rest_band(p, y, av, work):
+    """(a_lo, a_hi), m/s²: the horizontal floor accelerations between which everything stays
+    at rest (pedestal held, statue not rocking) in the state ``y`` under vertical acceleration
+    ``av``. At rest the floor forces are F = M·a_g and N = M·(g + a_v), so every guard is affine
+    in a_g (``models.modes`` docstring); the band is read off the guards at a_g = 0 and 1.
+    ``work`` is scratch space of length 2·N_GUARDS."""
+    evaluate_guards(p, 0, 0, y, 0.0, av, False, work[:N_GUARDS])
+    evaluate_guards(p, 0, 0, y, 1.0, av, False, work[N_GUARDS:])
+    lo, hi = -math.inf, math.inf
+    for i in range(N_GUARDS):
+        c = work[i]
+        d = work[N_GUARDS + i] - c
+        if d < 0.0:
+            hi = min(hi, c / -d)
+        elif d > 0.0:
+            lo = max(lo, -c / d)
+    return lo, hi

@@ -13,7 +13,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..excitation.signal import LOCAL_LINEAR, LOCAL_SIZE, local_value, localise
+from ..excitation.signal import LOCAL_COSINE, LOCAL_LINEAR, LOCAL_SIZE, LOCAL_ZERO, cosine_band_exit, local_value, localise
 from ..integrators import dop853, dopri5
 from ..models.dynamics import (
     evaluate_all,
@@ -36,8 +36,10 @@ from ..models.modes import (
     SLIP_TO_NEGATIVE,
     SLIP_TO_POSITIVE,
     STOP,
+    angle_guard,
     evaluate_guards,
     guards_from_forces,
+    rest_band,
     select_regime,
     track_threshold_guards,
 )
@@ -182,6 +184,8 @@ def _regime(sig, s):
 
 @njit(cache=True, _nrt=False)
 def _guard_at(p, sig, s, y0, F, h, x, loc, t0, exceeded, work, gbuf, index):
+    if s != 0 and index >= IMPACT:  # a guard of θ alone: interpolate θ only
+        return angle_guard(p, s, index, dop853.dense_component(y0, F, x, 2), exceeded)
     dop853.dense(y0, F, x, work)
     a, av = _ground(loc, t0 + x * h)
     evaluate_guards(p, sig, s, work, a, av, exceeded, gbuf)
@@ -246,15 +250,13 @@ def _minimum(p, sig, s, y0, F, h, loc, t0, exceeded, work, gbuf, index):
 
 
 @njit(cache=True, _nrt=False)
-def _positive_inside(p, sig, s, y0, F, h, loc, t0, exceeded, work, gbuf, index):
+def _positive_inside(p, sig, s, y0, F, h, loc, t0, exceeded, work, gbuf, index, x_turn):
     """A fraction x of the step where guard ``index`` is positive, or −1. For the impact guard
-    the best candidate is the turning point of θ (θ̇ = 0); otherwise 32 samples are tried."""
-    if index == IMPACT:
-        dop853.dense(y0, F, 1.0, work)
-        if (y0[3] > 0.0) != (work[3] > 0.0):
-            x = _theta_dot_root(y0, F, work)
-            if _guard_at(p, sig, s, y0, F, h, x, loc, t0, exceeded, work, gbuf, index) > 0.0:
-                return x
+    the best candidate is the turning point of θ, ``x_turn`` (−1 if none); otherwise 32
+    samples are tried."""
+    if index == IMPACT and x_turn >= 0.0:
+        if _guard_at(p, sig, s, y0, F, h, x_turn, loc, t0, exceeded, work, gbuf, index) > 0.0:
+            return x_turn
     x_best = -1.0
     for k in range(1, 32):
         x = k / 32.0
@@ -264,21 +266,19 @@ def _positive_inside(p, sig, s, y0, F, h, loc, t0, exceeded, work, gbuf, index):
 
 
 @njit(cache=True, _nrt=False)
-def _theta_dot_root(y0, F, work):
-    """Fraction of the step where θ̇ changes sign (Illinois method on the dense output; θ̇ is
-    smooth inside a step, so a few iterations reach 1e-13 of the step)."""
-    dop853.dense(y0, F, 0.0, work)
-    f_lo = work[3]
-    dop853.dense(y0, F, 1.0, work)
-    f_hi = work[3]
-    lo, hi = 0.0, 1.0
+def _theta_dot_root(y0, F, f_lo, f_hi, x_hi):
+    """Fraction of the step in [0, x_hi] where θ̇ changes sign, given θ̇ = f_lo at 0 and f_hi at
+    x_hi (Illinois method on the dense output). 1e-10 of the step is ample: θ at a turning point is insensitive to its position to
+    first order, and θ̇ is smooth inside a step."""
+    lo, hi = 0.0, x_hi
     side = 0
     for _ in range(100):
         x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
         if not (lo < x < hi):
             x = 0.5 * (lo + hi)
-        dop853.dense(y0, F, x, work)
-        fx = work[3]
+        fx = dop853.dense_component(y0, F, x, 3)
+        if fx == 0.0:
+            return x
         if (fx > 0.0) == (f_lo > 0.0):
             lo, f_lo = x, fx
             if side == 1:
@@ -289,7 +289,7 @@ def _theta_dot_root(y0, F, work):
             if side == -1:
                 f_lo *= 0.5
             side = -1
-        if hi - lo < 1e-13:
+        if hi - lo < 1e-10:
             break
     return 0.5 * (lo + hi)
 
@@ -382,6 +382,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
         np.empty(N_GUARDS + 1),  # gmin: + the largest top-face friction ratio at the stages
         np.empty(N_GUARDS),  # near
         np.ones(N_GUARDS, dtype=np.bool_),  # armed
+        np.empty(2 * N_GUARDS),  # gband: scratch of rest_band
     )
     pieces = _piece_table(sig_h, sig_v, breakpoints, t0, t_end)
     n_out, n_ev = _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt, save, n_grid, cap,
@@ -394,7 +395,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
 # array passed to, or inlined into, a function — a fifth to two fifths of the run time (perf).
 @njit(cache=True, _nrt=False)
 def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt, save, n_grid, cap, max_events,
-               summ, t_out, y_out, r_out, events, y, y_new, work, ye, K, Ke, F, g0, g1, gbuf, gmin, near, armed):
+               summ, t_out, y_out, r_out, events, y, y_new, work, ye, K, Ke, F, g0, g1, gbuf, gmin, near, armed, gband):
     """The event-driven loop of :func:`integrate` on preallocated arrays; returns the numbers of
     saved samples and of events."""
     for i in range(N_SUMMARY):
@@ -484,6 +485,30 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                         max_events, indeterminate,
                     )
                 continue
+        if sig == 0 and s == 0 and loc[0] == LOCAL_COSINE and loc[LOCAL_SIZE] == LOCAL_ZERO:
+            # At rest under a harmonic floor motion nothing changes until the floor acceleration
+            # leaves the band where rest holds: that exit is found in closed form, and the time
+            # up to just before it is crossed without integrating. The step that follows locates
+            # the event exactly as any other.
+            quiet = True
+            for i in range(N_GUARDS):
+                if not g0[i] > 0.0:
+                    quiet = False
+            if quiet:
+                a_lo, a_hi = rest_band(p, y, 0.0, gband)
+                t_quiet = cosine_band_exit(loc[1], loc[2], loc[3], t, t_stop, a_lo, a_hi)
+                if t_quiet > t:
+                    if save:
+                        n_out, next_grid = _hold(t_out, y_out, r_out, n_out, cap, next_grid, n_grid, t0, save_dt,
+                                                 t_quiet, y, 0, math.nan)
+                    t = t_quiet
+                    if t >= t_stop and t < t_end:
+                        ib, t_stop, sig, s, fresh, n_ev, indeterminate, loc = _cross_breakpoint(
+                            p, y, sig, s, t, t_end, ib, breakpoints, pieces, loc, events, n_ev, max_events,
+                            indeterminate,
+                        )
+                    fresh = True
+                    continue
         h_wanted = min(h, max_step)
         h = min(h_wanted, t_stop - t)
         # Avoid a sliver of a step before a breakpoint.
@@ -528,11 +553,14 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                 need_dense = True
         if save and next_grid < n_grid and t0 + next_grid * save_dt <= t1 + 1e-12 * h:
             need_dense = True
+        x_turn = -1.0  # where θ̇ changes sign in the step (a peak of |θ|), if it does
         if need_dense:
             if low_order:
                 dopri5.prepare_dense_nested(y, K, h, F)
             else:
                 _prepare_dense(t, y, y_new, h, K, work, F, p, sig, s, loc)
+            if s != 0 and (y[3] > 0.0) != (y_new[3] > 0.0):
+                x_turn = _theta_dot_root(y, F, y[3], y_new[3], 1.0)
         first = -1
         x_first = 2.0
         for i in range(N_GUARDS):
@@ -553,7 +581,7 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
             else:
                 # A guard that started on zero (just after an event) may have gone positive and
                 # back within this step: find an interior point where it is positive.
-                x_lo = _positive_inside(p, sig, s, y, F, h, loc, t, exceeded, work, gbuf, i)
+                x_lo = _positive_inside(p, sig, s, y, F, h, loc, t, exceeded, work, gbuf, i, x_turn)
                 if x_lo < 0.0:
                     # A friction or rocking threshold exactly tied when the regime was chosen
                     # (e.g. a pulse whose phase starts rocking at t = 0) and crossed right away:
@@ -580,13 +608,13 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                 summ[S_FIRST_SLIDE] = t
 
         # Peak rotation inside the step (θ̇ changes sign).
-        if s != 0 and need_dense:
-            dop853.dense(y, F, x_end, work)
-            if (y[3] > 0.0) != (work[3] > 0.0):
-                xr = _theta_dot_root(y, F, work)
-                if xr <= x_end:
-                    dop853.dense(y, F, xr, work)
-                    peak_theta = max(peak_theta, abs(work[2]))
+        if s != 0 and need_dense and x_turn < 0.0 and x_end < 1.0:
+            # No net sign change over the whole step, but maybe up to an event inside it.
+            thd_end = dop853.dense_component(y, F, x_end, 3)
+            if (y[3] > 0.0) != (thd_end > 0.0):
+                x_turn = _theta_dot_root(y, F, y[3], thd_end, x_end)
+        if 0.0 <= x_turn <= x_end:
+            peak_theta = max(peak_theta, abs(dop853.dense_component(y, F, x_turn, 2)))
 
         # Samples on the output grid up to the end of the (possibly shortened) step.
         if save:
