@@ -73,7 +73,10 @@ class SimulationError(RuntimeError):
 
 def _breakpoints(motion: AbstractMotion, t_end: float) -> np.ndarray:
     bp = np.asarray(motion.breakpoints, dtype=float)
-    return np.unique(bp[(bp > 0.0) & (bp < t_end)])
+    bp = bp[(bp > 0.0) & (bp < t_end)]
+    if bp.size > 1 and not np.all(bp[1:] > bp[:-1]):  # a record's sample times already are
+        bp = np.unique(bp)
+    return bp
 
 
 def prepare(

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
+from functools import cached_property
 from types import MappingProxyType
 from typing import Any
 
@@ -159,7 +160,7 @@ class GroundMotion(AbstractMotion):
         """Number of samples."""
         return int(self.time.size)
 
-    @property
+    @cached_property  # the arrays are read-only, so the median never changes
     def dt(self) -> float:
         """Median sampling interval (s), rounded to 12 significant digits.
 
