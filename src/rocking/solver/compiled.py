@@ -137,7 +137,7 @@ def _stages(t, y, h, K, work, p, sig, s, loc, gmin, c, a_tab, n_stages):
     for i in range(N_GUARDS):
         gmin[i] = np.inf
     gmin[N_GUARDS] = 0.0
-    n = y.shape[0]
+    n = N_STATE  # a constant: the stage sums unroll
     for stage in range(1, n_stages):
         for j in range(n):
             acc = 0.0
