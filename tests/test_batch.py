@@ -45,3 +45,32 @@ def test_summary_memory_is_small():
     per_run = sum(v.values.nbytes for v in ds.data_vars.values()) / 20
     # 100 000 runs must stay well below 500 MB.
     assert per_run * 100_000 < 100e6
+
+
+def test_series_on_request_match_single_runs():
+    cases = [(rk.System(statue=STATUE), rk.Harmonic(amplitude=a, frequency=1.2, cycles=6)) for a in (2.0, 6.75, 10.0)]
+    ds = run_cases(cases, workers=1, series=True)
+    assert ds.theta.dims == ("case", "time") and ds.time.attrs["units"] == "s"
+    assert float(ds.time[1]) == pytest.approx(0.01, abs=1e-15)
+    # Summaries are those of the runs without series.
+    plain = run_cases(cases, workers=1)
+    xr.testing.assert_identical(plain, ds[list(plain.data_vars)])
+    for i, (system, motion) in enumerate(cases):
+        r = rk.simulate(system, motion)
+        on_grid = np.isclose(r.t / 0.01, np.rint(r.t / 0.01), rtol=0, atol=1e-9)
+        t, first = np.unique(np.rint(r.t[on_grid] / 0.01), return_index=True)
+        theta = r.theta[on_grid][first]
+        n = theta.size
+        np.testing.assert_array_equal(ds.theta[i, :n].values, theta)
+        np.testing.assert_array_equal(ds.u[i, :n].values, r.u[on_grid][first])
+        # After the run ended (overturned) the histories are NaN.
+        assert np.all(np.isnan(ds.theta[i, n:].values))
+    assert bool(ds.overturned[2]) and np.isnan(ds.theta[2, -1])
+
+
+def test_sweep_series_keep_the_time_axis():
+    ds = sweep(rk.System(statue=STATUE), MOTION, {"motion.amplitude": [2.0, 9.0], "statue.height": [3.0, 4.0]},
+               workers=1, series=True)
+    assert ds.theta.dims == ("motion.amplitude", "statue.height", "time")
+    assert ds.overturned.dims == ("motion.amplitude", "statue.height")
+    assert ds.theta.sizes["time"] == int(round(MOTION.duration / 0.01)) + 1

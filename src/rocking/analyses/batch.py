@@ -33,12 +33,33 @@ def run_raw(system: System, motion: AbstractMotion, options: Options, duration: 
     return integrate(*args)[0]
 
 
-def _run_chunk(payload) -> np.ndarray:
-    cases, options, duration = payload
+def run_series(
+    system: System, motion: AbstractMotion, options: Options, duration: float | None, dt: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """Raw summary vector and the state (u, u̇, θ, θ̇) at t = k·dt (rows k = 0, 1, …, up to the end
+    of the run: an overturned run stops there)."""
+    options = dataclasses.replace(options, save_dt=dt)
+    _, args = prepare(system, motion, duration=duration, options=options, save=True)
+    summary, t, y, _, _ = integrate(*args)
+    k = np.rint(t / dt)
+    on_grid = np.flatnonzero(t == k * dt)  # the rows at event instants are off the grid
+    # An event exactly on a grid time adds rows there: keep the first (the state before it).
+    _, first = np.unique(k[on_grid], return_index=True)
+    return summary, y[on_grid[first]]
+
+
+def _run_chunk(payload):
+    cases, options, duration, series_dt = payload
     out = np.empty((len(cases), N_SUMMARY))
+    if series_dt is None:
+        for i, (system, motion) in enumerate(cases):
+            out[i] = run_raw(system, motion, options, duration)
+        return out
+    states = []
     for i, (system, motion) in enumerate(cases):
-        out[i] = run_raw(system, motion, options, duration)
-    return out
+        out[i], state = run_series(system, motion, options, duration, series_dt)
+        states.append(state)
+    return out, states
 
 
 def _chunks(cases: Sequence[Case], size: int) -> list[Sequence[Case]]:
@@ -69,8 +90,10 @@ def run_cases(
     workers: int | Any | None = None,
     chunk_size: int | None = None,
     progress: Callable[[int, int], None] | None = None,
+    series: bool = False,
 ):
-    """Run every (system, motion) case and return an ``xarray.Dataset`` of summaries along ``case``.
+    """Run every (system, motion) case and return an ``xarray.Dataset`` of summaries along ``case``
+    (and, with ``series=True``, the time histories too).
 
     Parameters
     ----------
@@ -85,6 +108,11 @@ def run_cases(
         Runs per task (default: enough for ~4 tasks per worker).
     progress : callable, optional
         ``progress(done, total)`` after each chunk.
+    series : bool
+        Also return the state histories ``u`` (m), ``u_dot`` (m/s), ``theta`` (rad) and
+        ``theta_dot`` (rad/s) along (``case``, ``time``), sampled every ``options.save_dt``
+        (default 0.01 s) from 0 to the longest run; NaN after a run ends (overturned, or a
+        shorter motion). Off by default: summaries alone keep 100 000 runs in a few tens of MB.
 
     Examples
     --------
@@ -104,12 +132,33 @@ def run_cases(
         per = default_workers() if nw is None else (int(nw) if not hasattr(nw, "map") else 8)
         chunk_size = max(1, min(2000, math.ceil(n / (4 * max(1, per)))))
     chunks = _chunks(cases, chunk_size)
-    payloads = [(c, options, duration) for c in chunks]
+    series_dt = (options.save_dt or 0.01) if series else None
+    payloads = [(c, options, duration, series_dt) for c in chunks]
     done_runs = np.cumsum([len(c) for c in chunks])
     report = (lambda k: progress(int(done_runs[k - 1]), n)) if progress else None
-    raw = np.concatenate(map_chunks(_run_chunk, payloads, nw, report), axis=0)
+    results = map_chunks(_run_chunk, payloads, nw, report)
     alphas = np.array([system.statue.slenderness for system, _ in cases])
-    return summaries_dataset(raw, alphas, dims=("case",), shape=(n,))
+    if not series:
+        return summaries_dataset(np.concatenate(results, axis=0), alphas, dims=("case",), shape=(n,))
+    raw = np.concatenate([r[0] for r in results], axis=0)
+    ds = summaries_dataset(raw, alphas, dims=("case",), shape=(n,))
+    return ds.assign(_series_variables([state for r in results for state in r[1]], series_dt))
+
+
+def _series_variables(states: list[np.ndarray], dt: float) -> dict:
+    """The state histories padded with NaN to a common time axis, as Dataset variables."""
+    import xarray as xr
+
+    n_time = max(len(s) for s in states)
+    padded = np.full((len(states), n_time, 4), np.nan)
+    for i, s in enumerate(states):
+        padded[i, : len(s)] = s
+    time = xr.DataArray(np.arange(n_time) * dt, dims="time", attrs={"units": "s"})
+    names = (("u", "m"), ("u_dot", "m/s"), ("theta", "rad"), ("theta_dot", "rad/s"))
+    return {
+        name: xr.DataArray(padded[:, :, j], dims=("case", "time"), coords={"time": time}, attrs={"units": unit})
+        for j, (name, unit) in enumerate(names)
+    }
 
 
 def summaries_dataset(raw: np.ndarray, alphas: np.ndarray, *, dims: tuple[str, ...], shape: tuple[int, ...], coords=None):
@@ -174,9 +223,11 @@ def sweep(
     duration: float | None = None,
     workers: int | Any | None = None,
     progress: Callable[[int, int], None] | None = None,
+    series: bool = False,
 ):
     """Run the Cartesian product of ``axes`` (dotted paths into the system, ``motion.<field>``,
-    ``"pga"`` or ``"scale"``) and return a Dataset with one dimension per axis.
+    ``"pga"`` or ``"scale"``) and return a Dataset with one dimension per axis (plus ``time``
+    for the state histories when ``series`` is True; see :func:`run_cases`).
 
     Examples
     --------
@@ -196,12 +247,14 @@ def sweep(
         for axis, value in zip(names, values):
             sysm, mot = _apply(sysm, mot, axis, float(value))
         cases.append((sysm, mot))
-    ds = run_cases(cases, options=options, duration=duration, workers=workers, progress=progress)
+    ds = run_cases(cases, options=options, duration=duration, workers=workers, progress=progress, series=series)
     shape = tuple(len(g) for g in grids)
     import xarray as xr
 
+    # "case" unfolds into one dimension per axis; a trailing "time" (series) stays.
     out = xr.Dataset(
-        {k: (names, ds[k].values.reshape(shape), ds[k].attrs) for k in ds.data_vars},
-        coords={k: g for k, g in zip(names, grids)},
+        {k: (tuple(names) + ds[k].dims[1:], ds[k].values.reshape(shape + ds[k].shape[1:]), ds[k].attrs)
+         for k in ds.data_vars},
+        coords={**{k: g for k, g in zip(names, grids)}, **({"time": ds.time} if series else {})},
     )
     return out
