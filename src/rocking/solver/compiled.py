@@ -476,12 +476,6 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
             for i in range(N_GUARDS):
                 armed[i] = g0[i] > 0.0
             fresh = False
-            if s != 0 and y[2] == 0.0 and y[3] * K[0, 3] < 0.0:
-                # Just after an impact, falling back: the next impact comes after about
-                # 2|θ̇/θ̈| (a parabola). In a chattering sequence that is far shorter than the
-                # step the controller proposes, and a step that ends soon after the impact is
-                # accurate enough for the event to be read off its dense output (below).
-                h = min(h, 3.0 * abs(y[3] / K[0, 3]))
         if sig == 0 and s == 0 and loc[0] <= LOCAL_LINEAR and loc[LOCAL_SIZE] <= LOCAL_LINEAR:
             # At rest under a piecewise-linear floor motion (a record between two samples) the
             # guards are linear in time: if they are positive at both ends nothing happens in
@@ -530,6 +524,15 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                         )
                     fresh = True
                     continue
+        if s != 0 and s * K[0, 3] < 0.0 and s * y[2] >= 0.0:
+            # Rocking back towards the impact: on a parabola s·θ reaches 0 after τ. A step
+            # ending soon after that (1.5 τ) still contains the impact but is short enough, in
+            # a chattering sequence, for the impact to be read off its dense output (below).
+            qa = -0.5 * s * K[0, 3]
+            qb = s * y[3]
+            tau = (qb + math.sqrt(qb * qb + 4.0 * qa * s * y[2])) / (2.0 * qa)
+            if tau > 1e-9:  # (an impact due at once is left to the event location)
+                h = min(h, 1.5 * tau)
         h_wanted = min(h, max_step)
         h = min(h_wanted, t_stop - t)
         # Avoid a sliver of a step before a breakpoint.
