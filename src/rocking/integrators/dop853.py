@@ -267,6 +267,19 @@ for _arr in (C, A, B, E3, E5, C_EXTRA, A_EXTRA, D):
 del _arr
 
 
+# The same couplings as (column, value) lists of their non-zeros, in increasing column order: the
+# dense-output loops then skip the zeros and still sum in the order of a dense loop.
+_EXTRA_NNZ = 8
+EXTRA_COLS = np.array([np.flatnonzero(row) for row in A_EXTRA])
+EXTRA_VALS = np.array([row[np.flatnonzero(row)] for row in A_EXTRA])
+D_COLS = np.flatnonzero(np.any(D != 0.0, axis=0))
+D_VALS = D[:, D_COLS].copy()
+assert EXTRA_COLS.shape == (N_EXTRA, _EXTRA_NNZ)
+for _arr in (EXTRA_COLS, EXTRA_VALS, D_COLS, D_VALS):
+    _arr.flags.writeable = False
+del _arr
+
+
 @njit(cache=True, inline="always")
 def stage_input(y, K, h, stage, out):
     """State at which stage ``stage`` (1…11) is evaluated: y + h·Σ_{k<stage} A[stage, k]·K[k].
@@ -329,13 +342,10 @@ def extra_stage_input(y, K, h, j, out):
     Needs K[0 … 12] (K[12] = f(t + h, y_new)) and the previous extra stages; the caller
     evaluates its right-hand side at (t + C_EXTRA[j]·h, out) into K[13 + j].
     """
-    s = N_STAGES + 1 + j
     for i in range(y.shape[0]):
         acc = 0.0
-        for k in range(s):
-            a = A_EXTRA[j, k]
-            if a != 0.0:
-                acc += a * K[k, i]
+        for q in range(_EXTRA_NNZ):
+            acc += EXTRA_VALS[j, q] * K[EXTRA_COLS[j, q], i]
         out[i] = y[i] + h * acc
 
 
@@ -355,10 +365,8 @@ def prepare_dense(y, y_new, K, h, F):
         F[2, j] = 2.0 * dy - h * (K[FSAL, j] + f0)
         for i in range(INTERPOLATOR_POWER - 3):
             acc = 0.0
-            for k in range(N_K):
-                d = D[i, k]
-                if d != 0.0:
-                    acc += d * K[k, j]
+            for q in range(D_COLS.shape[0]):
+                acc += D_VALS[i, q] * K[D_COLS[q], j]
             F[3 + i, j] = h * acc
 
 
