@@ -102,6 +102,7 @@ def main(argv=None) -> int:
     ap.add_argument("--batch", type=int, default=2000, help="runs in the compiled batch (default 2000)")
     ap.add_argument("--full", action="store_true", help="batch of 10 000 runs")
     ap.add_argument("--ref-batch", type=int, default=10, help="runs of the reference batch estimate")
+    ap.add_argument("--batch-repeats", type=int, default=3, help="timed repeats of the whole compiled batch")
     ap.add_argument("--quick", action="store_true", help="smoke run: 5/1 repeats, batch of 200, 2 reference runs")
     ap.add_argument("--rtol", type=float, default=rk.Options().rtol, help="tolerances of the timed runs (both solvers)")
     ap.add_argument("--atol", type=float, default=rk.Options().atol)
@@ -110,7 +111,7 @@ def main(argv=None) -> int:
     ap.add_argument("--cases", default="abcd", help="subset of cases to run, e.g. 'ab' or 'd'")
     args = ap.parse_args(argv)
     if args.quick:
-        args.repeats, args.ref_repeats, args.batch, args.ref_batch = 5, 1, 200, 3
+        args.repeats, args.ref_repeats, args.batch, args.ref_batch, args.batch_repeats = 5, 1, 200, 3, 1
     if args.full:
         args.batch = 10_000
 
@@ -167,9 +168,13 @@ def main(argv=None) -> int:
         motions = [paper_motion(a, f) for a, f in grid]
         # The batch API in this process (workers=1): summaries only, returned as a Dataset.
         run_cases([(system, motions[0])], options=timing, workers=1)  # warm-up (imports xarray)
-        t0 = time.perf_counter()
-        ds = run_cases([(system, m) for m in motions], options=timing, workers=1)
-        el_c = time.perf_counter() - t0
+        batch = [(system, m) for m in motions]
+        elapsed = []
+        for _ in range(args.batch_repeats):
+            t0 = time.perf_counter()
+            ds = run_cases(batch, options=timing, workers=1)
+            elapsed.append(time.perf_counter() - t0)
+        el_c = float(np.median(elapsed))
         n_over = int(ds.overturned.sum())
         mem_mb = ds.nbytes / 1e6
         # The reference on an evenly spaced subset of the same grid (it covers all amplitudes),
@@ -193,6 +198,8 @@ def main(argv=None) -> int:
               f"f = {f_lo:g}–{f_hi:g} Hz (serial, one process)")
         print(f"    compiled : {len(motions):6d} runs in {el_c:8.2f} s -> {ps_c:9.1f} runs/s "
               f"({1e3 / ps_c:.2f} ms/run; {n_over} overturned; Dataset of summaries {mem_mb:.1f} MB)")
+        print(f"               median of {len(elapsed)} batches; min {len(motions) / max(elapsed):.1f}, "
+              f"max {len(motions) / min(elapsed):.1f} runs/s")
         print(f"    reference: {len(picks):6d} runs in {el_r:8.2f} s -> {ps_r:9.2f} runs/s "
               f"({1e3 / ps_r:.0f} ms/run; evenly spaced subset of the grid; verdicts agree on {agree}/{len(picks)})")
         print(f"    same subset, compiled: {len(picks) / el_cs:.1f} runs/s -> reference/compiled time ratio "
