@@ -128,3 +128,20 @@ def test_a_block_below_its_threshold_is_never_integrated():
     assert not r.events
     assert np.all(r.theta == 0.0) and r.t[-1] == pytest.approx(15.0, abs=1e-12)
     assert len(r.t) == 1501  # the whole output grid, held at rest
+
+
+def test_rocking_from_a_tie_is_not_held_up_by_the_impact_step_limit():
+    # A sine pulse phased so that rocking starts at t = 0 (the spectra's "onset" phase), with
+    # the amplitude 1 % above the threshold: θ = θ̇ = 0 and θ̈ ≈ 0 at the start, where the
+    # predicted time to impact is zero. (Without a floor on that prediction the solver stalled.)
+    from rocking.analyses.spectra import spectrum_motion
+
+    st = block(0.2, 1.0)
+    gta, p = G * math.tan(st.slenderness), st.frequency_parameter(G)
+    for ratio in (1.01, 1.5):
+        motion = spectrum_motion("sine", ratio, 1.0, g_tan_alpha=gta, p=p)
+        r = rk.simulate(alone(st), motion, duration=3.0, options=rk.Options(gravity=G), save=False)
+        summary = r.summary()
+        assert r.status in ("completed", "overturned")
+        assert summary["end_time"] == pytest.approx(3.0 if r.status == "completed" else summary["overturn_time"])
+        assert summary["first_rocking_time"] == pytest.approx(0.0, abs=1e-12)

@@ -533,6 +533,9 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
             tau = (qb + math.sqrt(qb * qb + 4.0 * qa * s * y[2])) / (2.0 * qa)
             if tau > 1e-9:  # (an impact due at once is left to the event location)
                 h = min(h, 1.5 * tau)
+        if not h > 0.0:  # no step-size rule may stall the loop
+            status = STATUS_STEP_FAILED
+            break
         h_wanted = min(h, max_step)
         h = min(h_wanted, t_stop - t)
         # Avoid a sliver of a step before a breakpoint.
