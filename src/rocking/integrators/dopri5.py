@@ -79,19 +79,6 @@ def error_norm(y, y_new, K, h, rtol, atol, n_controlled):
 
 
 @njit(cache=True, _nrt=False)
-def dense(y, K, h, x, out):
-    """Interpolated state at t + x·h, 0 ≤ x ≤ 1, into ``out``."""
-    x2 = x * x
-    x3 = x2 * x
-    x4 = x3 * x
-    for j in range(y.shape[0]):
-        acc = 0.0
-        for k in range(7):
-            acc += K[k, j] * (P[k, 0] * x + P[k, 1] * x2 + P[k, 2] * x3 + P[k, 3] * x4)
-        out[j] = y[j] + h * acc
-
-
-@njit(cache=True, _nrt=False)
 def prepare_dense_nested(y, K, h, F):
     """The dense output of the step written in DOP853's nested form (see ``dop853.dense``), so one
     evaluator serves both methods: y + x(F0 + (1−x)(F1 + x(F2 + (1−x)F3))), F4…F6 = 0.

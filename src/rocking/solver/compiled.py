@@ -105,6 +105,14 @@ def _piece(table, i):
 
 
 @njit(cache=True, inline="always")
+def _all_positive(g):
+    for i in range(N_GUARDS):
+        if not g[i] > 0.0:
+            return False
+    return True
+
+
+@njit(cache=True, inline="always")
 def _ground(loc, t):
     """(a_g, a_v) at time t, m/s²."""
     return local_value(loc, 0, t), local_value(loc, LOCAL_SIZE, t)
@@ -383,7 +391,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
     y_out = np.empty((cap, 4))
     r_out = np.empty(cap, dtype=np.int8)
     events = np.empty((max_events + 2, N_EVENT_FIELDS))
-    work = (
+    scratch = (
         y_init.copy(),
         np.empty(N_STATE),  # y_new
         np.empty(N_STATE),  # work
@@ -401,7 +409,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
     )
     pieces = _piece_table(sig_h, sig_v, breakpoints, t0, t_end)
     n_out, n_ev = _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt, save, n_grid, cap,
-                             max_events, summ, t_out, y_out, r_out, events, *work)
+                             max_events, summ, t_out, y_out, r_out, events, *scratch)
     return summ, t_out[:n_out], y_out[:n_out], r_out[:n_out], events[:n_ev]
 
 
@@ -476,54 +484,43 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
             for i in range(N_GUARDS):
                 armed[i] = g0[i] > 0.0
             fresh = False
-        if sig == 0 and s == 0 and loc[0] <= LOCAL_LINEAR and loc[LOCAL_SIZE] <= LOCAL_LINEAR:
-            # At rest under a piecewise-linear floor motion (a record between two samples) the
-            # guards are linear in time: if they are positive at both ends nothing happens in
-            # between, and the interval is crossed without integrating (a statue at rest costs
-            # almost nothing per sample).
-            a1, av1 = _ground(loc, t_stop)
-            evaluate_guards(p, 0, 0, y, a1, av1, exceeded, g1)
-            quiet = True
-            for i in range(N_GUARDS):
-                if not (g0[i] > 0.0 and g1[i] > 0.0):
-                    quiet = False
-            if quiet:
-                if save:
-                    n_out, next_grid = _hold(t_out, y_out, r_out, n_out, cap, next_grid, n_grid, t0, save_dt,
-                                             t_stop + 1e-12, y, 0, math.nan)
-                t = t_stop
-                for i in range(N_GUARDS):
-                    g0[i] = g1[i]
-                if t < t_end:
-                    ib, t_stop, sig, s, fresh, n_ev, indeterminate, loc = _cross_breakpoint(
-                        p, y, sig, s, t, t_end, ib, breakpoints, pieces, loc, events, n_ev,
-                        max_events, indeterminate,
-                    )
-                continue
-        if sig == 0 and s == 0 and loc[0] == LOCAL_COSINE and loc[LOCAL_SIZE] == LOCAL_ZERO:
-            # At rest under a harmonic floor motion nothing changes until the floor acceleration
-            # leaves the band where rest holds: that exit is found in closed form, and the time
-            # up to just before it is crossed without integrating. The step that follows locates
-            # the event exactly as any other.
-            quiet = True
-            for i in range(N_GUARDS):
-                if not g0[i] > 0.0:
-                    quiet = False
-            if quiet:
+        if sig == 0 and s == 0 and _all_positive(g0):
+            # At rest nothing changes until a guard reaches zero, and at rest the guards depend
+            # on the floor motion alone: the time up to t_quiet, where rest surely still holds,
+            # is crossed without integrating. The step that follows locates the event as any
+            # other.
+            t_quiet = t
+            if loc[0] <= LOCAL_LINEAR and loc[LOCAL_SIZE] <= LOCAL_LINEAR:
+                # Piecewise-linear motion (a record between two samples): the guards are linear
+                # in time, so positive at both ends means positive in between.
+                a1, av1 = _ground(loc, t_stop)
+                evaluate_guards(p, 0, 0, y, a1, av1, exceeded, g1)
+                if _all_positive(g1):
+                    t_quiet = t_stop
+            elif loc[0] == LOCAL_COSINE and loc[LOCAL_SIZE] == LOCAL_ZERO:
+                # Harmonic motion: rest holds while a_g stays in the rest band; its exit is
+                # found in closed form.
                 a_lo, a_hi = rest_band(p, y, 0.0, gband)
                 t_quiet = cosine_band_exit(loc[1], loc[2], loc[3], t, t_stop, a_lo, a_hi)
-                if t_quiet > t:
-                    if save:
-                        n_out, next_grid = _hold(t_out, y_out, r_out, n_out, cap, next_grid, n_grid, t0, save_dt,
-                                                 t_quiet, y, 0, math.nan)
-                    t = t_quiet
-                    if t >= t_stop and t < t_end:
+                if t_quiet >= t_stop:
+                    a1, av1 = _ground(loc, t_stop)
+                    evaluate_guards(p, 0, 0, y, a1, av1, exceeded, g1)
+            if t_quiet > t:
+                if save:
+                    n_out, next_grid = _hold(t_out, y_out, r_out, n_out, cap, next_grid, n_grid, t0, save_dt,
+                                             t_quiet + 1e-12, y, 0, math.nan)
+                t = t_quiet
+                if t < t_stop:
+                    fresh = True
+                else:
+                    for i in range(N_GUARDS):
+                        g0[i] = g1[i]
+                    if t < t_end:
                         ib, t_stop, sig, s, fresh, n_ev, indeterminate, loc = _cross_breakpoint(
                             p, y, sig, s, t, t_end, ib, breakpoints, pieces, loc, events, n_ev, max_events,
                             indeterminate,
                         )
-                    fresh = True
-                    continue
+                continue
         if s != 0 and s * K[0, 3] < 0.0 and s * y[2] >= 0.0:
             # Rocking back towards the impact: on a parabola s·θ reaches 0 after τ. A step
             # ending soon after that (1.5 τ) still contains the impact but is short enough, in
