@@ -19,7 +19,6 @@ CONFIG = {
     "statue": {"width": 0.3, "height": 1.2, "mass": 100.0, "friction": {"static": 0.6, "kinetic": 0.5}},
     "pedestal": {"mass": 50.0, "friction": {"static": 0.3, "kinetic": 0.22}, "width": 0.6, "height": 0.4},
     "motion": {"kind": "harmonic", "amplitude": 4.0, "frequency": 1.5, "cycles": 3},
-    "simulation": {"duration": 3.0},
 }
 
 
@@ -27,11 +26,14 @@ def _friction(static, kinetic):
     return rk.Friction(static=static, kinetic=kinetic)
 
 
+def _pedestal_system():
+    statue = rk.Statue(width=0.3, height=1.2, mass=100.0, friction=_friction(0.6, 0.5))
+    return rk.System(statue=statue, pedestal=rk.Pedestal(mass=50.0, friction=_friction(0.3, 0.22), width=0.6, height=0.4))
+
+
 @pytest.fixture(scope="module")
 def pedestal_response():
-    statue = rk.Statue(width=0.3, height=1.2, mass=100.0, friction=_friction(0.6, 0.5))
-    system = rk.System(statue=statue, pedestal=rk.Pedestal(mass=50.0, friction=_friction(0.3, 0.22), width=0.6, height=0.4))
-    return rk.simulate(system, rk.Harmonic(amplitude=4.0, frequency=1.5, cycles=3), duration=3.0)
+    return rk.simulate(_pedestal_system(), rk.Harmonic(amplitude=4.0, frequency=1.5, cycles=3))
 
 
 @pytest.fixture(scope="module")
@@ -59,9 +61,12 @@ def test_report_from_a_response(pedestal_response, tmp_path):
     sentence = verdict(pedestal_response)
     assert re.fullmatch(
         r"The statue does not overturn; it rocks up to \d+\.\d\d α and the pedestal slides at most "
-        r"[\d.]+ mm \(residual [\d.]+ mm\)\.",
+        r"[\d.]+ mm \(residual [\d.]+ mm\); everything is at rest at t = \d+\.\d\d s\.",
         sentence,
     )
+    # The run went on after the motion (2 s) until everything was at rest.
+    assert pedestal_response.end_time > pedestal_response.motion.duration
+    assert f"at rest at t = {pedestal_response.end_time:.2f} s" in sentence
     assert escape(sentence) in html
     assert "Pedestal test" in html
     _check_self_contained(html)
@@ -85,6 +90,20 @@ def test_report_of_an_overturn(overturn_response, tmp_path):
     assert "The floor must supply a friction coefficient of at least" in html
 
 
+def test_a_run_cut_short_while_rocking_is_undetermined(pedestal_response, tmp_path):
+    """With an explicit duration that ends while the statue still rocks, the report must not say
+    that the statue does not overturn (issue 10: a run is not over when the floor stops)."""
+    cut = 0.5 * (pedestal_response.motion.duration + pedestal_response.end_time)
+    r = rk.simulate(_pedestal_system(), rk.Harmonic(amplitude=4.0, frequency=1.5, cycles=3), duration=cut)
+    assert r.status == "still_moving" and r.still_moving
+    s = r.summary()
+    assert s["still_moving"] is True and s["verdict"] == f"undetermined: still moving at t = {cut:.3f} s"
+    sentence = verdict(r)
+    assert sentence.startswith(f"Undetermined: the statue is still moving at t = {cut:.2f} s")
+    html = write_report(r, tmp_path, pdf=False).read_text(encoding="utf-8")
+    assert "does not overturn" not in html and escape(sentence) in html
+
+
 def test_report_from_a_config_dict(tmp_path):
     path = write_report(CONFIG, tmp_path, pdf=False)
     html = path.read_text(encoding="utf-8")
@@ -105,10 +124,14 @@ def test_report_from_config_and_response(tmp_path):
 def test_verdict_at_rest():
     statue = rk.Statue(width=0.3, height=1.2, mass=100.0)
     system = rk.System(statue=statue, pedestal=rk.Pedestal(mass=50.0, friction=_friction(0.3, 0.22)))
-    r = rk.simulate(system, rk.Harmonic(amplitude=0.5, frequency=1.5, cycles=2))
-    assert verdict(r) == "The statue does not overturn; it does not rock and the pedestal does not slide."
-    alone = rk.simulate(rk.System(statue=statue), rk.Harmonic(amplitude=0.5, frequency=1.5, cycles=2))
-    assert verdict(alone) == "The statue does not overturn; it neither rocks nor slides."
+    motion = rk.Harmonic(amplitude=0.5, frequency=1.5, cycles=2)
+    r = rk.simulate(system, motion)
+    # Nothing moves: the run ends with the motion.
+    assert verdict(r) == ("The statue does not overturn; it does not rock and the pedestal does not slide; "
+                          f"everything is at rest at t = {motion.duration:.2f} s.")
+    alone = rk.simulate(rk.System(statue=statue), motion)
+    assert verdict(alone) == ("The statue does not overturn; it neither rocks nor slides; everything is at rest "
+                              f"at t = {motion.duration:.2f} s.")
 
 
 def test_content_is_deterministic(pedestal_response):

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -13,6 +14,10 @@ from .models.bodies import System
 from .models.parameters import pack
 from .results.response import Response
 from .solver.compiled import N_STATE, integrate
+from .solver.signals import deferred_signals
+
+
+DEFAULT_MAX_SAMPLES = 5_000_000  # saved samples a run may hold by default (about 200 MB)
 
 
 @dataclass(frozen=True, kw_only=True, slots=True)
@@ -40,6 +45,15 @@ class Options:
         Spacing of the saved time series, s (default: the record's time step, or 0.01 s).
     max_events : int
         Stop with status "max_events" after this many events.
+    free_time_limit : float
+        When no duration is given, the run goes on after the floor motion ends, with the floor
+        still, until every body is at rest or the statue falls, but for at most this long, s.
+        A run cut short by this limit (or by an explicit duration) while anything still moves
+        ends with status "still_moving": its verdict is undetermined.
+    max_samples : int
+        Largest number of saved samples a run may hold (about 41 bytes each in memory, more in
+        output files); a run that would need more is refused before it starts
+        (:class:`ResourceLimitError`). The default, 5 million, is about 200 MB.
     """
 
     gravity: float = STANDARD_GRAVITY
@@ -51,6 +65,8 @@ class Options:
     rest_velocity: float = 1e-6
     save_dt: float | None = None
     max_events: int = 100_000
+    free_time_limit: float = 60.0
+    max_samples: int = DEFAULT_MAX_SAMPLES
 
     def __post_init__(self):
         if self.normal_force not in ("full", "paper"):
@@ -63,12 +79,84 @@ class Options:
                 raise ValueError(f"simulation.{name} must be a positive number, got {v!r}")
         if self.save_dt is not None and (not math.isfinite(self.save_dt) or self.save_dt <= 0):
             raise ValueError(f"simulation.save_dt must be a positive number, got {self.save_dt!r}")
-        if int(self.max_events) < 1:
-            raise ValueError(f"simulation.max_events must be ≥ 1, got {self.max_events!r}")
+        for name in ("max_events", "max_samples"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 1:
+                raise ValueError(f"simulation.{name} must be an integer ≥ 1, got {v!r}")
+        v = self.free_time_limit
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0:
+            raise ValueError(f"simulation.free_time_limit must be a number ≥ 0 (s), got {v!r}")
 
 
 class SimulationError(RuntimeError):
     """The solver could not finish (singular slide-rock system, step-size underflow)."""
+
+
+class ResourceLimitError(ValueError):
+    """A run would need more memory than ``simulation.max_samples`` allows; the message names
+    the fields to change."""
+
+
+# Bytes a saved sample takes in the solver's arrays: t, (u, u̇, θ, θ̇) as float64, regime int8.
+SAMPLE_BYTES = 8 + 4 * 8 + 1
+EVENT_BYTES = 10 * 8  # one row of the event table
+
+
+def human_bytes(n: float) -> str:
+    """``4.1e10`` → ``"41 GB"`` (decimal units)."""
+    for unit in ("bytes", "kB", "MB", "GB", "TB", "PB"):
+        if n < 1000 or unit == "PB":
+            return f"{n:.3g} {unit}"
+        n /= 1000.0
+    raise AssertionError  # pragma: no cover
+
+
+def _as_options(options: Options | Mapping) -> Options:
+    if isinstance(options, Options):
+        return options
+    if isinstance(options, Mapping):
+        known = {f.name for f in fields(Options)}
+        unknown = sorted(set(map(str, options)) - known)
+        if unknown:
+            raise ValueError(f"options: unknown key {unknown[0]!r}; known keys: {', '.join(sorted(known))}")
+        return Options(**options)
+    raise TypeError(f"options must be rocking.Options or a dict of its fields, got {type(options).__name__}")
+
+
+def _finite(name: str, value, unit: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise TypeError(f"{name} must be a number ({unit}), got {value!r}")
+    value = float(value)
+    if not math.isfinite(value):
+        raise ValueError(f"{name} must be a finite number ({unit}), got {value!r}")
+    return value
+
+
+def _check_memory(t_end: float, save_dt: float, save: bool, options: Options, duration: float | None,
+                  motion_duration: float) -> None:
+    """Refuse, before anything is allocated, a run whose saved series or event table would not
+    fit in ``options.max_samples`` samples."""
+    limit = options.max_samples
+    span = (f"{t_end:.6g} s" if duration is not None else
+            f"{t_end:.6g} s (the motion's {motion_duration:.6g} s + simulation.free_time_limit "
+            f"{options.free_time_limit:.6g} s)")
+    if save:
+        n = math.floor(t_end / save_dt + 1e-9) + 1
+        if n > limit:
+            raise ResourceLimitError(
+                f"simulation.save_dt: {save_dt:.6g} s over {span} would store {n:.3g} samples "
+                f"({human_bytes(n * SAMPLE_BYTES)} in memory, more in output files), over simulation.max_samples "
+                f"= {limit:.3g}; raise save_dt, shorten simulation.duration, raise max_samples, or set save = false"
+            )
+    # The event table is reserved whole (max_events rows) whatever the series: it may take as
+    # much memory as the default series would, or as the raised limit allows.
+    budget = max(limit, DEFAULT_MAX_SAMPLES) * SAMPLE_BYTES
+    if options.max_events * EVENT_BYTES > budget:
+        raise ResourceLimitError(
+            f"simulation.max_events: {options.max_events:.3g} would reserve {human_bytes(options.max_events * EVENT_BYTES)} "
+            f"for the event table, more than {human_bytes(budget)} (simulation.max_samples = {limit:.3g}); lower "
+            "max_events or raise max_samples"
+        )
 
 
 def _breakpoints(motion: AbstractMotion, t_end: float) -> np.ndarray:
@@ -84,20 +172,33 @@ def prepare(
     motion: AbstractMotion,
     *,
     duration: float | None = None,
-    options: Options = Options(),
+    options: Options | Mapping = Options(),
     initial_rotation: float = 0.0,
     initial_angular_velocity: float = 0.0,
     initial_sliding_velocity: float = 0.0,
     save: bool = True,
 ) -> tuple[np.ndarray, tuple]:
     """Validate the inputs and pack them for the compiled solver: (parameter vector, arguments
-    of :func:`rocking.solver.compiled.integrate`). Batch runs call this and the solver directly."""
+    of :func:`rocking.solver.compiled.integrate` but the last, the stop flag). Batch runs call
+    this and the solver directly.
+
+    Without ``duration`` the run lasts the motion and then at most ``options.free_time_limit``
+    more seconds, ending as soon as everything is at rest; with it, exactly ``duration``."""
     if not isinstance(system, System):
         raise TypeError(f"system must be a rocking.System, got {type(system).__name__}")
     if not isinstance(motion, AbstractMotion):
         raise TypeError(f"motion must be a floor motion, got {type(motion).__name__}")
-    t_end = motion.duration if duration is None else float(duration)
-    if not math.isfinite(t_end) or t_end <= 0:
+    options = _as_options(options)
+    initial_rotation = _finite("initial_rotation", initial_rotation, "rad")
+    initial_angular_velocity = _finite("initial_angular_velocity", initial_angular_velocity, "rad/s")
+    initial_sliding_velocity = _finite("initial_sliding_velocity", initial_sliding_velocity, "m/s")
+    motion_end = float(motion.duration)
+    if duration is None:
+        t_end, t_settle = motion_end + float(options.free_time_limit), motion_end
+    else:
+        t_end = _finite("simulation.duration", duration, "s")
+        t_settle = math.inf  # the user asked for this length: keep it, at rest or not
+    if not t_end > 0:
         raise ValueError(f"simulation.duration must be a positive number, got {duration!r}")
     if abs(initial_rotation) >= 0.5 * math.pi:
         raise ValueError(f"initial_rotation must satisfy |θ0| < π/2, got {initial_rotation!r}")
@@ -112,6 +213,7 @@ def prepare(
     if save_dt is None:
         dt = getattr(motion, "dt", None)
         save_dt = float(dt) if dt else 0.01
+    _check_memory(t_end, save_dt, save, options, duration, motion_end)
     y0 = np.zeros(N_STATE)
     y0[1], y0[2], y0[3] = initial_sliding_velocity, initial_rotation, initial_angular_velocity
     sig_h, sig_v = motion.signal(), motion.vertical_signal()
@@ -129,8 +231,17 @@ def prepare(
         save_dt,
         save,
         int(options.max_events),
+        t_settle,
     )
     return p, args
+
+
+def solve(args: tuple) -> tuple:
+    """Run the compiled solver on :func:`prepare`'s arguments with Ctrl-C and SIGTERM deferred
+    (see :mod:`rocking.solver.signals`): an interrupt stops the run within milliseconds and is
+    raised (``KeyboardInterrupt``) once the solver has returned."""
+    with deferred_signals() as flag:
+        return integrate(*args, flag)
 
 
 def simulate(
@@ -154,8 +265,11 @@ def simulate(
     motion : AbstractMotion
         The floor motion (Harmonic, a pulse, or a recorded GroundMotion).
     duration : float, optional
-        Simulated time, s; default: the motion's duration.
-    options : Options
+        Simulated time, s. Default: the motion's duration, then free motion on a still floor
+        until everything is at rest or the statue falls, for at most
+        ``options.free_time_limit`` s. The summary's ``verdict`` says "undetermined" when the
+        run ends while anything still moves.
+    options : Options or dict
         Model options and solver tolerances.
     initial_rotation, initial_angular_velocity : float
         θ(0), rad, and θ̇(0), rad/s (free-rocking studies).
@@ -178,12 +292,13 @@ def simulate(
     >>> r.summary()["overturned"]
     True
     """
+    options = _as_options(options)
     p, args = prepare(
         system, motion, duration=duration, options=options, initial_rotation=initial_rotation,
         initial_angular_velocity=initial_angular_velocity, initial_sliding_velocity=initial_sliding_velocity,
         save=save,
     )
-    summary, t, y, regime, events = integrate(*args)
+    summary, t, y, regime, events = solve(args)
     t_end = args[5]
     response = Response(
         system=system,
@@ -196,6 +311,7 @@ def simulate(
         state=y,
         regime_codes=regime,
         event_table=events,
+        duration_given=duration is not None,
     )
     if throw and response.status in ("singular", "step_failed"):
         raise SimulationError(response.status_message)

@@ -20,8 +20,8 @@ import numpy as np
 from ..excitation.base import AbstractMotion
 from ..models.bodies import System
 from ..results.response import SUMMARY_FIELDS, summary_values
-from ..simulation import Options, prepare
-from ..solver.compiled import N_SUMMARY, integrate
+from ..simulation import Options, prepare, solve
+from ..solver.compiled import N_SUMMARY
 from .executors import as_executor, default_workers
 
 Case = tuple[System, AbstractMotion]
@@ -30,7 +30,7 @@ Case = tuple[System, AbstractMotion]
 def run_raw(system: System, motion: AbstractMotion, options: Options, duration: float | None = None) -> np.ndarray:
     """Raw summary vector of one run (no time series)."""
     _, args = prepare(system, motion, duration=duration, options=options, save=False)
-    return integrate(*args)[0]
+    return solve(args)[0]
 
 
 def run_series(
@@ -40,7 +40,7 @@ def run_series(
     of the run: an overturned run stops there)."""
     options = dataclasses.replace(options, save_dt=dt)
     _, args = prepare(system, motion, duration=duration, options=options, save=True)
-    summary, t, y, _, _ = integrate(*args)
+    summary, t, y, _, _ = solve(args)
     k = np.rint(t / dt)
     on_grid = np.flatnonzero(t == k * dt)  # the rows at event instants are off the grid
     # An event exactly on a grid time adds rows there: keep the first (the state before it).
@@ -169,11 +169,11 @@ def summaries_dataset(raw: np.ndarray, alphas: np.ndarray, *, dims: tuple[str, .
     data = {}
     for key in SUMMARY_FIELDS:
         values = [row[key] for row in rows]
-        if key in ("overturned",):
+        if key in ("overturned", "still_moving"):
             arr = np.array(values, dtype=bool)
         elif key == "impacts":
             arr = np.array(values, dtype=np.int64)
-        elif key == "status":
+        elif key in ("status", "verdict"):
             arr = np.array(values, dtype=str)
         else:
             arr = np.array([np.nan if v is None else v for v in values], dtype=float)

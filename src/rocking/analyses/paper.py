@@ -222,12 +222,15 @@ def run_case(
     save: bool = True,
     progress: Callable[[str], None] | None = None,
 ) -> dict[str, Response]:
-    """Simulate one case in the given variants; returns ``{variant: Response}``."""
+    """Simulate one case in the given variants; returns ``{variant: Response}``.
+
+    Each run lasts exactly the paper's window (its number of cycles), as the paper's runs do; a
+    run still moving at its end says so (``still_moving``) rather than being followed further."""
     motion = paper_motion(case, omega, form)
     out = {}
     for variant in variants:
         system, options = variant_setup(case, variant, restitution)
-        out[variant] = simulate(system, motion, options=options, save=save)
+        out[variant] = simulate(system, motion, duration=motion.duration, options=options, save=save)
         if progress is not None:
             progress(variant)
     return out
@@ -285,6 +288,7 @@ def _row(case: PaperCase, variant: str, response: Response) -> dict[str, Any]:
         "warnings": len(s["warnings"]),
         "warning_text": "; ".join(s["warnings"]),
         "status": s["status"],
+        "still_moving": s["still_moving"],
     }
 
 
@@ -409,9 +413,10 @@ def outcome_table_markdown(rows: Sequence[Mapping[str, Any]]) -> str:
     lines = [header, "|" + "---|" * header.count(" | ") + "---|"]
     for r in rows:
         first = f"{_opt_time(r['first_rocking_time'])} / {_opt_time(r['first_sliding_time'])}"
+        fell = _t(r["overturned"], r["overturn_time"]) + (" (still moving at the end)" if r.get("still_moving") else "")
         lines.append(
             f"| {r['case']} | {r['variant_label']} | {r['initial_regime'].lower().replace('_', '+')} "
-            f"| {_t(r['overturned'], r['overturn_time'])} | {_t(r['exceeded_alpha'], r['exceeded_alpha_time'])} "
+            f"| {fell} | {_t(r['exceeded_alpha'], r['exceeded_alpha_time'])} "
             f"| {r['peak_rotation_over_alpha']:.3f} | {r['peak_sliding']:.3f} | {r['residual_sliding']:+.3f} "
             f"| {r['impacts']} | {first} | {r['required_top_friction']:.3f} | {r['warnings']} "
             f"| {r['paper_outcome']} | {_yes(r['agrees'])} | {_yes(r['agrees_alpha_criterion'])} |"
@@ -424,7 +429,9 @@ def outcome_table_markdown(rows: Sequence[Mapping[str, Any]]) -> str:
             f"g = {first['gravity']} m/s², r = {first['restitution']}, pedestal m1 = {TABLE_1.pedestal_mass} kg "
             f"on μs = {TABLE_1.static_friction}, μk = {TABLE_1.kinetic_friction}. "
             "u: sliding of the body on the floor (pedestal, or the statue alone). "
-            "μ top: largest friction ratio |Px|/Py needed under the statue (sampled at every solver stage and at impacts, while |θ| ≤ α)."
+            "μ top: largest friction ratio |Px|/Py needed under the statue (sampled at every solver stage and at impacts, while |θ| ≤ α). "
+            "Each run lasts the paper's window; \"still moving at the end\" marks a run whose statue or pedestal had "
+            "not come to rest when the window closed: whether it would still fall is not decided by that window."
         )
     return "\n".join(lines) + "\n"
 
@@ -522,11 +529,13 @@ def friction_sweep(
     options = options if options is not None else Options(gravity=TABLE_1.gravity)
     motion = Harmonic(amplitude=amplitude, frequency=frequency, cycles=cycles, angular_frequency=omega)
     statue = Statue(width=width, height=height, mass=statue_mass, restitution=restitution)
-    alone = simulate(System(statue=statue), motion, options=options, save=False).summary()
+    # The paper's fixed window (its number of cycles), as in run_case.
+    alone = simulate(System(statue=statue), motion, duration=motion.duration, options=options, save=False).summary()
     rows = []
     for i, mu in enumerate(mus):
         pedestal = Pedestal(mass=pedestal_mass, friction=Friction(static=mu, kinetic=kinetic_ratio * mu))
-        s = simulate(System(statue=statue, pedestal=pedestal), motion, options=options, save=False).summary()
+        s = simulate(System(statue=statue, pedestal=pedestal), motion, duration=motion.duration, options=options,
+                     save=False).summary()
         rows.append(
             {
                 "static_friction": mu,
@@ -544,6 +553,7 @@ def friction_sweep(
                 "overturned": s["overturned"],
                 "overturn_time": s["overturn_time"],
                 "exceeded_alpha_time": s["exceeded_alpha_time"],
+                "still_moving": s["still_moving"],
                 "warnings": len(s["warnings"]),
                 "alone_overturned": alone["overturned"],
                 "alone_overturn_time": alone["overturn_time"],

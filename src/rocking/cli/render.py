@@ -39,12 +39,13 @@ def summary_table(summary: Mapping[str, Any], *, title: str | None = None) -> Ta
     table = Table(title=escape(title) if title else None, show_header=False, title_justify="left")
     table.add_column("quantity", style="bold")
     table.add_column("value")
+    text = s.get("verdict") or ("overturned" if s["overturned"] else "did not overturn")
     if s["overturned"]:
-        outcome = f"[bold red]overturned[/] at {_time(s['overturn_time'])}"
+        outcome = f"[bold red]{escape(text)}[/]"
+    elif text.startswith("undetermined"):
+        outcome = f"[bold yellow]{escape(text)}[/]"
     else:
-        outcome = "[bold green]did not overturn[/]"
-    if s.get("status") not in (None, "completed", "overturned"):
-        outcome += f" ([yellow]{escape(str(s['status']))}[/])"
+        outcome = f"[bold green]{escape(text)}[/]"
     table.add_row("outcome", outcome)
     table.add_row("|θ| first exceeded α", _time(s["exceeded_alpha_time"]))
     ratio = s.get("peak_rotation_over_alpha")

@@ -85,12 +85,20 @@ def verdict(response) -> str:
         body = f"{rock} and does not slide"
     else:
         body = f"{rock} and " + amount if rocks else f"it does not rock but {amount}"
+    if s["still_moving"]:
+        return (
+            f"Undetermined: the statue is still moving at t = {s['end_time']:.2f} s, when the run ended "
+            f"(raise simulation.free_time_limit or simulation.duration for a verdict); until then it did not "
+            f"overturn: {body}."
+        )
     if s["status"] != "completed":
         return (
-            f"The simulation stopped early at t = {s['end_time']:.2f} s ({response.status_message}); "
+            f"Undetermined: the simulation stopped early at t = {s['end_time']:.2f} s ({response.status_message}); "
             f"until then the statue did not overturn: {body}."
         )
-    return f"The statue does not overturn; {body}."
+    if s["verdict"].startswith("undetermined"):  # the run ended before the floor motion did
+        return f"{s['verdict'][0].upper()}{s['verdict'][1:]}; until then the statue did not overturn: {body}."
+    return f"The statue does not overturn; {body}; everything is at rest at t = {s['end_time']:.2f} s."
 
 
 # ----------------------------------------------------------------------------------- inputs
@@ -168,7 +176,9 @@ def describe_inputs(response, config: Any = None) -> dict[str, Rows]:
         out["Pedestal"] = [("pedestal", "none: the statue stands on the floor")]
     out["Motion"] = _motion_rows(response.motion, response)
     out["Options"] = [
-        ("simulated duration", f"{response.duration:g} s"),
+        ("simulated", f"until t = {response.end_time:.3f} s (" + (
+            f"simulation.duration = {response.duration:g} s" if response.duration_given
+            else f"the motion, then free motion until at rest, at most {options.free_time_limit:g} s more") + ")"),
         ("gravity g", f"{g:g} m/s²"),
         ("normal force in the friction law", options.normal_force),
         ("impact rule", options.impact),

@@ -13,12 +13,18 @@ from ..models.transitions import EV_IMPACT, EV_SETTLE
 from ..solver import compiled as C
 
 _STATUS = {
-    C.STATUS_COMPLETED: ("completed", "the motion was simulated to the end"),
+    C.STATUS_COMPLETED: ("completed", "simulated until everything was at rest (or to the requested duration)"),
     C.STATUS_OVERTURNED: ("overturned", "the statue overturned (|θ| reached π/2)"),
     C.STATUS_MAX_EVENTS: ("max_events", "stopped: too many events (raise simulation.max_events)"),
     C.STATUS_SINGULAR: ("singular", "slide-rock equations singular (Painlevé indeterminacy, μk ≥ 2/3?)"),
     C.STATUS_STEP_FAILED: ("step_failed", "step size underflow"),
+    C.STATUS_STILL_MOVING: ("still_moving", "still moving when the run ended: raise simulation.free_time_limit "
+                                            "(or simulation.duration) for a verdict"),
+    C.STATUS_INTERRUPTED: ("interrupted", "interrupted (Ctrl-C or SIGTERM)"),
 }
+
+# A floor acceleration above this many g is almost surely a units or scaling mistake.
+PGA_WARNING_G = 5.0
 
 
 class Impact(NamedTuple):
@@ -48,12 +54,26 @@ SUMMARY_FIELDS = (
     "overturned", "overturn_time", "exceeded_alpha_time", "peak_rotation", "peak_rotation_over_alpha",
     "peak_sliding", "residual_sliding", "impacts", "first_rocking_time", "first_sliding_time",
     "required_top_friction", "impact_floor_friction_needed", "energy_balance_error", "status", "end_time",
+    "still_moving", "verdict",
 )
+
+
+def verdict_text(status: str, overturn_time: float | None, end_time: float) -> str:
+    """The one-line verdict: "overturned at t = …", "did not overturn; at rest at t = …", or
+    "undetermined: …" whenever the run could not tell (still moving, or the solver stopped)."""
+    if status == "overturned":
+        return f"overturned at t = {overturn_time:.3f} s"
+    if status == "completed":
+        return f"did not overturn; at rest at t = {end_time:.3f} s"
+    if status == "still_moving":
+        return f"undetermined: still moving at t = {end_time:.3f} s"
+    return f"undetermined: the solver stopped at t = {end_time:.3f} s ({status})"
 
 
 def summary_values(raw: np.ndarray, alpha: float) -> dict[str, Any]:
     """The summary dictionary (keys ``SUMMARY_FIELDS``) from the solver's raw summary vector."""
     status = _STATUS[int(raw[C.S_STATUS])][0]
+    end_time = float(raw[C.S_T_END])
     return {
         "overturned": status == "overturned",
         "overturn_time": _opt(raw[C.S_OVERTURN_TIME]),
@@ -69,7 +89,9 @@ def summary_values(raw: np.ndarray, alpha: float) -> dict[str, Any]:
         "impact_floor_friction_needed": float(raw[C.S_IMPACT_FLOOR_RATIO]),
         "energy_balance_error": float(raw[C.S_BALANCE] / raw[C.S_ENERGY_SCALE]),
         "status": status,
-        "end_time": float(raw[C.S_T_END]),
+        "end_time": end_time,
+        "still_moving": status == "still_moving",
+        "verdict": verdict_text(status, _opt(raw[C.S_OVERTURN_TIME]), end_time),
     }
 
 
@@ -80,7 +102,9 @@ class Response:
     Time series (sampled on a uniform grid merged with the event instants; at an event both the
     state before and after appear with the same time): ``t`` (s), ``u`` and ``u_dot`` (sliding of
     the body on the floor relative to the floor, m and m/s), ``theta`` and ``theta_dot`` (statue,
-    rad and rad/s), ``regime`` (:class:`Regime` codes).
+    rad and rad/s), ``regime`` (:class:`Regime` codes). ``duration`` is the longest the run could
+    last (s): the requested duration, or the motion plus ``free_time_limit``; ``end_time`` is when
+    it ended.
     """
 
     system: Any
@@ -93,6 +117,7 @@ class Response:
     state: np.ndarray = field(repr=False)
     regime_codes: np.ndarray = field(repr=False)
     event_table: np.ndarray = field(repr=False)
+    duration_given: bool = False  # True: ``duration`` was asked for; False: it is the free-motion cap
 
     # -- time series -----------------------------------------------------------------------
     @property
@@ -195,11 +220,43 @@ class Response:
             out.append(f"{int(s[C.S_INDETERMINATE])} instant(s) where no regime was strictly consistent")
         if self.status not in ("completed", "overturned"):
             out.append(self.status_message)
+        if self._ended_before_motion():
+            out.append(f"the run ended at t = {self.end_time:.3f} s, before the floor motion did "
+                       f"({self.motion.duration:.3f} s): the verdict covers only the simulated part")
+        g = self.options.gravity
+        pga = float(self.motion.pga)
+        if pga > PGA_WARNING_G * g:
+            out.append(f"the floor's peak acceleration is {pga / g:.1f} g (above {PGA_WARNING_G:g} g): check the "
+                       "record's units and scaling")
         return out
+
+    @property
+    def end_time(self) -> float:
+        """Time at which the run ended, s."""
+        return float(self.raw_summary[C.S_T_END])
+
+    @property
+    def still_moving(self) -> bool:
+        """True if the run ended while something still moved: its verdict is undetermined."""
+        return self.status == "still_moving"
+
+    def _ended_before_motion(self) -> bool:
+        return self.status == "completed" and self.end_time < float(self.motion.duration) - 1e-9
+
+    @property
+    def verdict(self) -> str:
+        """One line: "overturned at t = … s", "did not overturn; at rest at t = … s", or
+        "undetermined: …" (still moving at the end, the run stopped before the floor motion did,
+        or the solver stopped)."""
+        if self._ended_before_motion():
+            return (f"undetermined: the run ended at t = {self.end_time:.3f} s, before the floor motion "
+                    f"({float(self.motion.duration):.3f} s)")
+        return verdict_text(self.status, self.overturn_time, self.end_time)
 
     def summary(self) -> dict[str, Any]:
         """The summary contract of ``rocking run`` (SI units, radians, null when it did not happen)."""
         out = summary_values(self.raw_summary, self.alpha)
+        out["verdict"] = self.verdict
         out["warnings"] = self.warnings
         return out
 

@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from numba import njit, types
 
 from ..excitation.signal import LOCAL_COSINE, LOCAL_LINEAR, LOCAL_SIZE, LOCAL_ZERO, cosine_band_exit, local_value, localise
 from ..integrators import dop853, dopri5
@@ -54,6 +54,11 @@ from ..models.modes import (
 )
 from ..models.parameters import ALPHA, B, CAN_SLIDE, G, H, M, MU_S, MU_TOP
 
+# Runs the Python-level signal handlers (C API; needs the GIL, which compiled code holds). In a
+# thread other than the main one it does nothing. See rocking.solver.signals for why the
+# handlers must only record the signal while compiled code runs.
+_check_signals = types.ExternalFunction("PyErr_CheckSignals", types.int32())
+
 # Layout of the summary vector returned by `integrate` (NaN = did not happen).
 (S_STATUS, S_OVERTURN_TIME, S_EXCEED_TIME, S_PEAK_ROTATION, S_PEAK_SLIDING, S_RESIDUAL_SLIDING, S_IMPACTS,
  S_FIRST_ROCK, S_FIRST_SLIDE, S_TOP_RATIO, S_BALANCE, S_STEPS, S_EVENTS, S_T_END, S_N_NONPOSITIVE,
@@ -61,7 +66,11 @@ from ..models.parameters import ALPHA, B, CAN_SLIDE, G, H, M, MU_S, MU_TOP
  S_D_IMPACT, S_D_FRICTION, S_W_INPUT, S_ENERGY_SCALE, S_REJECTED, S_FINAL_THETA, S_FINAL_U_DOT) = range(28)
 N_SUMMARY = 28
 
-STATUS_COMPLETED, STATUS_OVERTURNED, STATUS_MAX_EVENTS, STATUS_SINGULAR, STATUS_STEP_FAILED = 0, 1, 2, 3, 4
+(STATUS_COMPLETED, STATUS_OVERTURNED, STATUS_MAX_EVENTS, STATUS_SINGULAR, STATUS_STEP_FAILED, STATUS_STILL_MOVING,
+ STATUS_INTERRUPTED) = range(7)
+# The event loop hands pending signals (Ctrl-C, SIGTERM) to Python's handlers every this many
+# iterations: often enough to stop within milliseconds, rarely enough to cost nothing.
+SIGNAL_POLL_INTERVAL = 2000
 
 N_EVENT_FIELDS = 10  # t, kind, regime before, regime after, u̇⁻, u̇⁺, θ̇⁻, θ̇⁺, energy lost, friction ratio
 
@@ -377,8 +386,16 @@ def _hold(t_out, y_out, r_out, n_out, cap, next_grid, n_grid, t0, save_dt, t_lim
 
 
 @njit(cache=True)
-def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_step, save_dt, save, max_events):
+def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_step, save_dt, save, max_events,
+              t_settle, stop_flag):
     """Integrate the hybrid system from t0 to t_end.
+
+    From ``t_settle`` on (s; the end of the floor motion, or +inf) the run also ends as soon as
+    every body is at rest: the pedestal stuck and the statue at rest (θ = θ̇ = 0), with the
+    floor still, nothing can move again. A run that reaches ``t_end`` while anything still
+    moves ends with status STILL_MOVING. ``stop_flag`` (int64[1]) is set by the signal handlers
+    of :func:`rocking.solver.signals.deferred_signals`; the loop polls the handlers every
+    SIGNAL_POLL_INTERVAL iterations and ends with status INTERRUPTED when it is non-zero.
 
     Returns (summary, t_out, y_out, regime_out, events): the summary vector (layout above), the
     saved samples (a uniform grid of step ``save_dt`` merged with the event instants; empty when
@@ -409,7 +426,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
     )
     pieces = _piece_table(sig_h, sig_v, breakpoints, t0, t_end)
     n_out, n_ev = _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt, save, n_grid, cap,
-                             max_events, summ, t_out, y_out, r_out, events, *scratch)
+                             max_events, t_settle, stop_flag, summ, t_out, y_out, r_out, events, *scratch)
     return summ, t_out[:n_out], y_out[:n_out], r_out[:n_out], events[:n_ev]
 
 
@@ -418,7 +435,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
 # array passed to, or inlined into, a function — a fifth to two fifths of the run time (perf).
 @njit(cache=True, _nrt=False)
 def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt, save, n_grid, cap, max_events,
-               summ, t_out, y_out, r_out, events, y, y_new, work, ye, K, Ke, F, g0, g1, gbuf, gmin, near, armed, gband):
+               t_settle, stop_flag, summ, t_out, y_out, r_out, events, y, y_new, work, ye, K, Ke, F, g0, g1, gbuf, gmin, near, armed, gband):
     """The event-driven loop of :func:`integrate` on preallocated arrays; returns the numbers of
     saved samples and of events."""
     for i in range(N_SUMMARY):
@@ -471,8 +488,20 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
     energy_scale = max(abs(e0), p[M] * p[G] * 1e-6 * (p[B] + p[H]))
     h = min(max_step, 1e-3, t_end - t0)
     fresh = True  # K[0] and the guards at t must be recomputed (start, event or breakpoint)
+    since_poll = 0
 
     while t < t_end:
+        since_poll += 1
+        if since_poll >= SIGNAL_POLL_INTERVAL:
+            since_poll = 0
+            _check_signals()
+            if stop_flag[0] != 0:
+                status = STATUS_INTERRUPTED
+                break
+        if sig == 0 and s == 0 and t >= t_settle:
+            # At rest on a still floor: nothing can move again (the rest detection of impacts
+            # has closed any Zeno sequence), so the run is over.
+            break
         if fresh:
             while ib < nb and breakpoints[ib] <= t:
                 ib += 1
@@ -785,6 +814,8 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                 if math.isfinite(xn) and abs(xn) > b1 and math.isnan(summ[S_UPLIFT]):
                     summ[S_UPLIFT] = t
 
+    if status == STATUS_COMPLETED and (sig != 0 or s != 0):
+        status = STATUS_STILL_MOVING  # the time ran out, not the motion
     if save and status != STATUS_OVERTURNED:
         # Last grid point(s) reached exactly at t_end.
         n_out, next_grid = _hold(t_out, y_out, r_out, n_out, cap, next_grid, n_grid, t0, save_dt, t + 1e-9, y,

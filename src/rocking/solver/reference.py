@@ -232,12 +232,13 @@ def _active_guards(p, sig, s, exceeded):
 
 
 def integrate_reference(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_step, save_dt, save,
-                        max_events, guard_dt=GUARD_DT):
+                        max_events, guard_dt=GUARD_DT, t_settle=math.inf):
     """Integrate the hybrid system from ``t0`` to ``t_end`` with SciPy's DOP853.
 
     Arguments as :func:`rocking.solver.compiled.integrate` (``sig_h``/``sig_v`` are
     ``excitation.base.Signal`` tuples, ``y_init`` holds at least (u, u̇, θ, θ̇)); ``guard_dt`` is
-    the largest spacing of the extra guard samples inside a step (0 turns them off). Returns a
+    the largest spacing of the extra guard samples inside a step (0 turns them off); from
+    ``t_settle`` on, the run ends once everything is at rest (a still floor moves nothing). Returns a
     dict: ``t``, ``state`` (n×4), ``regime``, ``on_grid`` (True for the uniform-grid rows; the
     other rows are the states just before and after each event, as in the compiled output),
     ``event_table`` (compiled layout), ``status`` and the scalar results.
@@ -326,6 +327,8 @@ def integrate_reference(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, a
     override = {}  # guard index -> how to watch it at the next restart (same instant)
     try:
         while st["t"] < t_end:
+            if st["sig"] == 0 and st["s"] == 0 and st["t"] >= t_settle:
+                break
             skip_passed_breakpoints()
             t_stop = stop_time()
             t_start, y = st["t"], st["y"]
@@ -492,6 +495,8 @@ def integrate_reference(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, a
         status = "singular"
 
     t, y = st["t"], st["y"]
+    if status == "completed" and (st["sig"] != 0 or st["s"] != 0):
+        status = "still_moving"
     if save and status != "overturned":
         # Last grid point(s) reached exactly at t_end (the grid may overshoot it by 1e-9·save_dt).
         while st["next_grid"] < n_grid:
@@ -543,7 +548,8 @@ def simulate_reference(
 ) -> dict:
     """Simulate ``system`` on ``motion`` with the SciPy reference solver.
 
-    Same model and options as :func:`rocking.simulate` (``options.rtol``/``atol``/``max_step``
+    Same model, options and run length as :func:`rocking.simulate` (without ``duration``: the
+    motion, then free motion until at rest, at most ``options.free_time_limit``; ``options.rtol``/``atol``/``max_step``
     are passed to ``solve_ivp``; ``options.save_dt`` is ignored in favour of ``save_dt``; with
     ``save_dt=None`` the rule of ``simulate`` applies: the record's time step, else 0.01 s).
 
@@ -560,7 +566,11 @@ def simulate_reference(
         ``first_rocking_time``, ``first_sliding_time``, ``end_time``, ``diagnostics``.
         With ``save=False`` the time series are empty (for timing runs).
     """
-    t_end = motion.duration if duration is None else float(duration)
+    if duration is None:
+        t_settle = float(motion.duration)
+        t_end = t_settle + float(options.free_time_limit)
+    else:
+        t_end, t_settle = float(duration), math.inf
     if not math.isfinite(t_end) or t_end <= 0:
         raise ValueError(f"duration must be a positive number, got {duration!r}")
     if abs(initial_rotation) >= 0.5 * math.pi:
@@ -573,7 +583,7 @@ def simulate_reference(
     y0 = np.array([0.0, initial_sliding_velocity, initial_rotation, initial_angular_velocity], dtype=float)
     raw = integrate_reference(p, motion.signal(), motion.vertical_signal(), _breakpoints(motion, 0.0, t_end), 0.0,
                               t_end, y0, options.rtol, options.atol, options.max_step, float(save_dt), bool(save),
-                              int(options.max_events))
+                              int(options.max_events), t_settle=t_settle)
     table = raw["event_table"]
     rows = [(float(r[0]), EventKind(int(r[1])), Regime(int(r[2])), Regime(int(r[3]))) for r in table]
     impacts = [Impact(*(float(v) for v in (r[0], r[4], r[5], r[6], r[7], r[8], r[9])))

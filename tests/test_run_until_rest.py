@@ -1,0 +1,194 @@
+"""A run is not over when the floor stops (issue 10 §1).
+
+Without ``duration`` a run goes on after the motion, on a still floor, until every body is at
+rest or the statue falls (at most ``free_time_limit`` s). A run cut short while anything moves
+says "undetermined", never "did not overturn". The verdicts are checked against longer runs
+and, for the free slide after the motion, against its closed form.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+import rocking as rk
+from rocking.cli import main
+from rocking.solver.reference import simulate_reference
+from rocking.simulation import ResourceLimitError
+
+from helpers import alone, block
+
+G = 9.81
+OPTS = rk.Options(gravity=G)
+
+# The issue's example: a 0.3 m × 1.2 m statue under one 6 m/s², 1 Hz sine pulse. The pulse is
+# over at 1 s, the statue falls at 1.334 s.
+ISSUE_STATUE = rk.Statue(width=0.3, height=1.2, mass=100.0)
+ISSUE_PULSE = rk.SinePulse(amplitude=6.0, frequency=1.0)
+ISSUE_TOML = """
+[statue]
+width = 0.3
+height = 1.2
+mass = 100.0
+[motion]
+kind = "pulse"
+shape = "sine"
+amplitude = 6.0
+frequency = 1.0
+"""
+
+
+def test_a_statue_falling_after_the_pulse_is_reported_as_falling():
+    r = rk.simulate(rk.System(statue=ISSUE_STATUE), ISSUE_PULSE)
+    longer = rk.simulate(rk.System(statue=ISSUE_STATUE), ISSUE_PULSE, duration=20.0)
+    assert ISSUE_PULSE.duration == pytest.approx(1.0)
+    assert r.overturned and longer.overturned
+    # The same run as the explicit 20 s one, up to the fall (same solver steps: same numbers).
+    assert r.overturn_time == pytest.approx(longer.overturn_time, abs=1e-12)
+    assert r.overturn_time == pytest.approx(1.334, abs=5e-4) and r.overturn_time > ISSUE_PULSE.duration
+    assert r.summary()["verdict"] == f"overturned at t = {r.overturn_time:.3f} s"
+    # Cut at the end of the pulse, the run must not claim that the statue survives.
+    cut = rk.simulate(rk.System(statue=ISSUE_STATUE), ISSUE_PULSE, duration=ISSUE_PULSE.duration)
+    s = cut.summary()
+    assert s["status"] == "still_moving" and s["still_moving"] and not s["overturned"]
+    assert s["verdict"] == "undetermined: still moving at t = 1.000 s"
+    assert any("still moving" in w for w in s["warnings"])
+
+
+def test_cli_says_overturned_and_undetermined(capsys, tmp_path):
+    f = tmp_path / "issue.toml"
+    f.write_text(ISSUE_TOML, encoding="utf-8")
+    assert main(["run", str(f), "--json"]) == 0
+    s = json.loads(capsys.readouterr().out)
+    assert s["overturned"] and s["verdict"].startswith("overturned at t = 1.33")
+    f.write_text(ISSUE_TOML + "[simulation]\nduration = 1.0\n", encoding="utf-8")
+    assert main(["run", str(f)]) == 0
+    out = capsys.readouterr().out
+    assert "undetermined: still moving at t = 1.000 s" in out
+    assert "did not overturn" not in out
+    assert main(["run", str(f), "--json"]) == 0
+    s = json.loads(capsys.readouterr().out)
+    assert s["still_moving"] is True and s["status"] == "still_moving"
+
+
+def test_free_slide_after_the_motion_stops_as_its_closed_form():
+    """A squat block still sliding when the floor stops decelerates at μk·g: it stops after
+    |v|/(μk g) and slides v²/(2 μk g) further (independent of the solver's equations)."""
+    mu_s, mu_k = 0.3, 0.2
+    squat = block(0.5, 0.25, friction=rk.Friction(static=mu_s, kinetic=mu_k))  # tan α = 2: never rocks
+    motion = rk.Harmonic(amplitude=5.0, frequency=1.0, cycles=2.25, form="sin")  # ends at a crest of the velocity
+    at_end = rk.simulate(alone(squat), motion, duration=motion.duration, options=OPTS)
+    assert at_end.status == "still_moving"
+    u_m, v_m = float(at_end.u[-1]), float(at_end.u_dot[-1])
+    assert abs(v_m) > 0.05  # sliding when the floor stops
+    r = rk.simulate(alone(squat), motion, options=OPTS)
+    s = r.summary()
+    assert s["status"] == "completed" and not s["still_moving"]
+    assert s["end_time"] == pytest.approx(motion.duration + abs(v_m) / (mu_k * G), abs=1e-9)
+    assert s["residual_sliding"] == pytest.approx(u_m + math.copysign(v_m**2 / (2 * mu_k * G), v_m), abs=1e-9)
+    assert s["verdict"] == f"did not overturn; at rest at t = {s['end_time']:.3f} s"
+    # At rest means stuck with zero velocity (the last saved state).
+    assert r.u_dot[-1] == 0.0 and r.theta[-1] == 0.0 and r.theta_dot[-1] == 0.0
+
+
+def test_free_rocking_after_the_motion_ends_at_rest_and_agrees_with_the_reference_solver():
+    statue = block(0.25, 1.0, restitution=0.8)
+    motion = rk.Harmonic(amplitude=4.0, frequency=1.2, cycles=3)  # rocks, does not fall
+    r = rk.simulate(alone(statue), motion, options=OPTS)
+    ref = simulate_reference(alone(statue), motion, options=OPTS)
+    assert r.status == ref["status"] == "completed"
+    assert r.end_time > motion.duration + 0.5  # the statue rocked on after the floor stopped
+    # Both end at the impact that the rest rule closes (|θ̇⁺| below rest_velocity).
+    assert r.end_time == pytest.approx(ref["end_time"], abs=1e-8)
+    assert r.theta[-1] == 0.0 and r.theta_dot[-1] == 0.0
+    # The end does not depend on the cap, as long as the cap is longer.
+    capped = rk.simulate(alone(statue), motion, options=rk.Options(gravity=G, free_time_limit=30.0), save=False)
+    assert capped.end_time == r.end_time
+    short = rk.simulate(alone(statue), motion, options=rk.Options(gravity=G, free_time_limit=0.2))
+    assert short.status == "still_moving"
+    assert short.end_time == pytest.approx(motion.duration + 0.2, abs=1e-12)
+    assert short.summary()["verdict"].startswith("undetermined: still moving")
+
+
+def test_a_run_ending_before_the_motion_is_undetermined_even_at_rest():
+    statue = block(0.15, 0.6)
+    quiet = rk.Harmonic(amplitude=0.5, frequency=1.0, cycles=10)  # below the rocking threshold
+    r = rk.simulate(alone(statue), quiet, duration=3.0)
+    assert r.status == "completed" and not r.still_moving
+    assert r.verdict.startswith("undetermined: the run ended at t = 3.000 s, before the floor motion")
+    assert r.summary()["verdict"] == r.verdict
+    assert any("before the floor motion did" in w for w in r.warnings)
+
+
+def test_a_quiet_statue_ends_with_the_motion():
+    statue = block(0.15, 0.6)
+    quiet = rk.Harmonic(amplitude=0.5, frequency=1.0, cycles=2)
+    r = rk.simulate(alone(statue), quiet)
+    assert r.status == "completed" and r.end_time == pytest.approx(quiet.duration, abs=1e-12)
+    assert r.t[-1] == pytest.approx(quiet.duration, abs=1e-12)
+
+
+def test_batch_summaries_carry_still_moving():
+    from rocking.analyses.batch import run_cases
+
+    statue = block(0.25, 1.0, restitution=0.8)
+    motion = rk.Harmonic(amplitude=4.0, frequency=1.2, cycles=3)
+    ds = run_cases([(alone(statue), motion)] * 2, options=OPTS, workers=1)
+    assert not ds.still_moving.values.any() and ds.verdict.values[0].startswith("did not overturn")
+    ds = run_cases([(alone(statue), motion)], options=OPTS, duration=motion.duration, workers=1)
+    assert ds.still_moving.values.all() and ds.verdict.values[0].startswith("undetermined")
+
+
+# ------------------------------------------------------------------------ bounded resources
+def test_a_run_that_would_not_fit_in_memory_is_refused_before_it_starts():
+    statue = block(0.15, 0.6)
+    motion = rk.Harmonic(amplitude=0.5, frequency=1.0, cycles=2)
+    with pytest.raises(ResourceLimitError, match=r"^simulation\.save_dt: 1e-09 s over 1e\+06 s would store 1e\+15 "
+                                                 r"samples \(4\.1e\+04 TB|^simulation\.save_dt: 1e-09 s over 1e\+06 s "
+                                                 r"would store 1e\+15 samples \(41 PB"):
+        rk.simulate(alone(statue), motion, duration=1e6, options=rk.Options(save_dt=1e-9))
+    with pytest.raises(ResourceLimitError, match=r"simulation\.max_samples"):
+        rk.simulate(alone(statue), motion, duration=1e6)  # 1e8 samples at 0.01 s
+    # Without saving, the series costs nothing and the run is allowed.
+    assert rk.simulate(alone(statue), motion, duration=1e3, save=False).status == "completed"
+    # The limit can be raised.
+    r = rk.simulate(alone(statue), motion, duration=10.0, options=rk.Options(save_dt=1e-3, max_samples=20_000))
+    assert r.t.size >= 10_001
+    with pytest.raises(ResourceLimitError, match=r"^simulation\.max_events"):
+        rk.simulate(alone(statue), motion, options=rk.Options(max_events=10**8))
+
+
+# ------------------------------------------------------------------------------ bad input
+@pytest.mark.parametrize(
+    ("kwargs", "error", "words"),
+    [
+        ({"initial_rotation": "0.1"}, TypeError, "initial_rotation must be a number (rad), got '0.1'"),
+        ({"initial_rotation": math.nan}, ValueError, "initial_rotation must be a finite number (rad), got nan"),
+        ({"initial_angular_velocity": math.inf}, ValueError, "initial_angular_velocity must be a finite number"),
+        ({"options": {"rtol": 1e-8, "tolerance": 1}}, ValueError, "options: unknown key 'tolerance'"),
+        ({"options": 3}, TypeError, "options must be rocking.Options or a dict"),
+        ({"options": {"free_time_limit": -1.0}}, ValueError, "simulation.free_time_limit must be a number ≥ 0"),
+    ],
+)
+def test_bad_arguments_get_a_one_line_error(kwargs, error, words):
+    with pytest.raises(error) as info:
+        rk.simulate(alone(block(0.15, 0.6)), rk.Harmonic(amplitude=0.5, frequency=1.0), **kwargs)
+    assert words in str(info.value) and "\n" not in str(info.value)
+
+
+def test_options_may_be_a_dict():
+    motion = rk.Harmonic(amplitude=0.5, frequency=1.0)
+    a = rk.simulate(alone(block(0.15, 0.6)), motion, options={"gravity": 9.81, "save_dt": 0.05})
+    assert a.options == rk.Options(gravity=9.81, save_dt=0.05)
+    assert np.allclose(np.diff(a.t), 0.05)
+
+
+def test_an_implausible_pga_is_flagged():
+    statue = block(0.5, 0.5)  # squat: survives anything briefly
+    motion = rk.Harmonic(amplitude=6.0 * 9.80665, frequency=5.0, cycles=1)
+    assert any("above 5 g" in w for w in rk.simulate(alone(statue), motion).warnings)
+    calm = rk.Harmonic(amplitude=4.0 * 9.80665, frequency=5.0, cycles=1)
+    assert not any("above 5 g" in w for w in rk.simulate(alone(statue), calm).warnings)
