@@ -192,3 +192,53 @@ def test_an_implausible_pga_is_flagged():
     assert any("above 5 g" in w for w in rk.simulate(alone(statue), motion).warnings)
     calm = rk.Harmonic(amplitude=4.0 * 9.80665, frequency=5.0, cycles=1)
     assert not any("above 5 g" in w for w in rk.simulate(alone(statue), calm).warnings)
+
+
+# ------------------------------------------------------------------------------ interrupts
+_LONG_RUN = """
+import sys, time
+import rocking as rk
+system = rk.System(statue=rk.Statue(width=1.0, height=4.0, mass=1.0),
+                   pedestal=rk.Pedestal(mass=1.0, friction=rk.Friction(static=0.1, kinetic=0.08)))
+floor = rk.Harmonic(amplitude=2.0, frequency=1.2, cycles=1e8)  # slides for ever: hours of solver time
+rk.simulate(system, floor, duration=0.5, save=False)  # compiled (or loaded from the cache) first
+print("busy", flush=True)
+t0 = time.perf_counter()
+try:
+    rk.simulate(system, floor, duration=1e8, save=False, options=rk.Options(max_events=2_000_000))
+except KeyboardInterrupt:
+    print(f"KeyboardInterrupt after {time.perf_counter() - t0:.3f} s", flush=True)
+    sys.exit(3)
+print("finished", flush=True)
+"""
+
+
+@pytest.mark.parametrize("signum", ["SIGINT", "SIGTERM"])
+def test_a_signal_during_a_compiled_run_stops_it_cleanly(signum, tmp_path):
+    """Ctrl-C raises KeyboardInterrupt within the solver's polling interval; SIGTERM ends the
+    process as SIGTERM does. Before issue 10 both crashed it with a segmentation fault."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    script = tmp_path / "long_run.py"
+    script.write_text(_LONG_RUN, encoding="utf-8")
+    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout.readline().strip() == "busy"
+        time.sleep(0.5)  # well inside the long run
+        sent = time.perf_counter()
+        proc.send_signal(getattr(signal, signum))
+        out, err = proc.communicate(timeout=20)
+        latency = time.perf_counter() - sent
+    finally:
+        proc.kill()
+    assert "finished" not in out
+    if signum == "SIGINT":
+        assert proc.returncode == 3, err
+        assert "KeyboardInterrupt after" in out
+    else:
+        assert proc.returncode == -signal.SIGTERM, err
+    assert "Segmentation fault" not in err and "Fatal Python error" not in err
+    assert latency < 5.0  # the solver polls every few thousand steps: milliseconds, with a wide margin
