@@ -157,6 +157,20 @@ def test_plot_design_chart_image(tmp_path):
     assert_image_matches(ax.figure, "plot_design_chart", tmp_path)
 
 
+def test_plot_design_chart_scatter_band_image(tmp_path):
+    """The recommended μs = 0.2 with its friction scatter band [0.16, 0.24] shaded, below tan α."""
+    mu = np.linspace(0.05, 0.45, 9)
+    rot = np.where(mu < 0.25, 0.0, 1.2 + mu)
+    ax = plot_design_chart(mu, rot, 0.3 * np.exp(-5.0 * mu), np.where(mu < 0.25, 0.0, 1 / 6), tan_alpha=0.25,
+                           recommended=0.2, friction_scatter=0.2)
+    band = [p for p in ax.patches if p.get_label() == "μs·(1 ± 0.2)"]
+    assert len(band) == 1
+    patch = band[0]  # a Rectangle (matplotlib ≥ 3.9) or a Polygon
+    xs = [patch.get_x(), patch.get_x() + patch.get_width()] if hasattr(patch, "get_width") else patch.get_xy()[:, 0]
+    assert min(xs) == pytest.approx(0.16) and max(xs) == pytest.approx(0.24)
+    assert_image_matches(ax.figure, "plot_design_chart_band", tmp_path)
+
+
 # ----------------------------------------------------------------- behaviour of the plots
 def test_plots_draw_into_given_axes(pedestal_response):
     fig = Figure()
@@ -232,7 +246,8 @@ def test_animation_rejects_bad_requests(short_response, tmp_path, monkeypatch):
         animate(short_response, tmp_path / "run.avi")
     with pytest.raises(ValueError, match="speed"):
         animate(short_response, tmp_path / "run.gif", speed=0)
-    monkeypatch.setattr(anim_mod.shutil, "which", lambda name: None)
+    # where matplotlib looks for ffmpeg: a path that does not exist stands for "not installed"
+    monkeypatch.setitem(matplotlib.rcParams, "animation.ffmpeg_path", str(tmp_path / "no-ffmpeg"))
     with pytest.raises(RuntimeError, match=r"ffmpeg.*\.gif"):
         animate(short_response, tmp_path / "run.mp4")
 

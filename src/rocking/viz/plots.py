@@ -533,6 +533,8 @@ def plot_design_chart(
     *,
     xlabel: str = "pedestal friction on the floor μs (–)",
     tan_alpha: float | None = None,
+    recommended: float | None = None,
+    friction_scatter: float = 0.0,
 ) -> Axes:
     """Design chart against the floor friction under the pedestal, on two y-axes.
 
@@ -551,6 +553,11 @@ def plot_design_chart(
         Fraction of runs that overturned, in [0, 1].
     tan_alpha : float, optional
         Mark μs = tan α (the statue alone rocks before sliding above it).
+    recommended : float, optional
+        Mark the recommended μs.
+    friction_scatter : float
+        Relative scatter s of the friction: shade [μs·(1 − s), μs·(1 + s)] around the
+        recommended μs, the range its safety was checked over.
 
     Returns
     -------
@@ -582,6 +589,15 @@ def plot_design_chart(
         ax.axvline(tan_alpha, color="0.5", lw=0.8, ls=":", zorder=2)
         ax.annotate("μs = tan α", (tan_alpha, top * 0.97), xytext=(3, 0), textcoords="offset points",
                     fontsize=_LEGEND_SIZE, color="0.35", va="top")
+    if recommended is not None:
+        rec = float(recommended)
+        if friction_scatter > 0:
+            span = ax.axvspan(rec * (1.0 - friction_scatter), rec * (1.0 + friction_scatter), color=COLORS["energy"],
+                              alpha=0.12, lw=0, zorder=0, label=f"μs·(1 ± {friction_scatter:g})")
+            handles.append(span)
+        ax.axvline(rec, color=COLORS["energy"], lw=1.6, alpha=0.7, zorder=2)
+        ax.annotate("recommended", (rec, 0.02), xytext=(3, 2), textcoords="offset points", fontsize=_LEGEND_SIZE,
+                    color=COLORS["energy"])
     ax.set_ylim(0.0, top * 1.05)
     ax.set_xlabel(xlabel)
     ax.set_ylabel("peak |θ|/α, overturn rate (–)")

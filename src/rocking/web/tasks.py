@@ -18,7 +18,7 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
-__all__ = ["SWEEP_COLUMNS", "best_row", "run_task", "sweep_task"]
+__all__ = ["SWEEP_COLUMNS", "run_task", "sweep_task"]
 
 Progress = Callable[[int, int, str], None]
 
@@ -37,6 +37,14 @@ SWEEP_COLUMNS = (
     "first_sliding_time",
     "required_top_friction",
     "status",
+    # the design's judgement of the value over the friction scatter μs·(1 ± s), μk alike:
+    "safe",  # the statue stands at every friction level
+    "falls",  # it overturns at some level
+    "undetermined",  # no fall, but still moving at the end (or the run stopped) at some level
+    "clearance",  # m: the largest peak sliding over the levels, the free space the pedestal needs
+    "meets_limits",
+    "inverted",  # μs at or above the statue-pedestal face's friction
+    "recommended",
 )
 
 
@@ -50,12 +58,14 @@ def _jsonable(summary: Mapping[str, Any]) -> dict[str, Any]:
     return json.loads(summary_json(summary))
 
 
-def _motion_rows(motion: Any, duration: float, gravity: float) -> list[tuple[str, str]]:
+def _motion_rows(motion: Any, end_time: float, gravity: float) -> list[tuple[str, str]]:
+    """Rows describing the floor motion and how long the run lasted (``end_time``, s)."""
     rows = [("record", str(getattr(motion, "name", "") or type(motion).__name__))]
     if hasattr(motion, "dt"):
         rows.append(("samples", f"{motion.n} at Δt = {motion.dt:g} s"))
     rows.append(("PGA (after scaling)", f"{motion.pga:.3f} m/s² = {motion.pga / gravity:.3f} g"))
-    rows.append(("simulated duration", f"{duration:.2f} s"))
+    rows.append(("length of the motion", f"{motion.duration:.2f} s"))
+    rows.append(("simulated until", f"{end_time:.2f} s"))
     return rows
 
 
@@ -100,13 +110,12 @@ def run_task(
     ax = plot_energy(response)
     ax.figure.savefig(out / "energy.png", dpi=dpi, metadata={"Software": None})
     progress(2, 4, "animating")
-    speed = _animation_speed(response.duration, float(anim["longest_video"]))
+    speed = _animation_speed(response.end_time, float(anim["longest_video"]))
     animate(response, out / "animation.gif", speed=speed, fps=float(anim["fps"]), dpi=int(anim["dpi"]))
-    _, motion, options, duration = cfg.to_specs()
     result = {
         "verdict": verdict(response),
         "summary": _jsonable(summary),
-        "motion": _motion_rows(motion, duration, options.gravity),
+        "motion": _motion_rows(response.motion, response.end_time, response.options.gravity),
         "files": {"response": "response.png", "energy": "energy.png", "animation": "animation.gif"},
         "animation_speed": speed,
         "seconds": seconds,
@@ -117,35 +126,6 @@ def run_task(
 
 
 # ------------------------------------------------------------------------------- design sweep
-RULE = ("among the values that meet the limits, the one where the statue does not overturn (or falls last), "
-        "then the smallest peak rotation, then the least sliding, then the smaller μs")
-
-
-def best_row(rows: list[Mapping[str, Any]], sliding_limit: float | None = None,
-             top_friction_limit: float | None = None) -> tuple[Mapping[str, Any], bool]:
-    """The recommended row of a one-motion sweep and whether it meets the limits.
-
-    The rule of :func:`rocking.analyses.design.friction_design` for one motion: among the rows
-    whose peak sliding is within ``sliding_limit`` (m) and whose statue–pedestal face needs no more
-    than ``top_friction_limit``, no overturn first, then the smallest peak θ/α, the smaller peak
-    sliding, the smaller μs. If no row meets the limits, the best row regardless of them.
-    """
-
-    def ok(r: Mapping[str, Any]) -> bool:
-        if sliding_limit is not None and r["peak_sliding"] > sliding_limit:
-            return False
-        need = r["required_top_friction"]
-        return not (top_friction_limit is not None and not r["overturned"] and need is not None
-                    and need > top_friction_limit)
-
-    def key(r: Mapping[str, Any]) -> tuple:
-        return (bool(r["overturned"]), -(r["overturn_time"] or 0.0) if r["overturned"] else 0.0,
-                r["peak_rotation_over_alpha"], r["peak_sliding"], r["static_friction"])
-
-    feasible = [r for r in rows if ok(r)]
-    return (min(feasible, key=key), True) if feasible else (min(rows, key=key), False)
-
-
 def _value(v: Any) -> Any:
     v = v.item() if hasattr(v, "item") else v
     if isinstance(v, float) and math.isnan(v):
@@ -157,50 +137,41 @@ def _row(mu: float, mu_k: float, point: Any) -> dict[str, Any]:
     """One sweep row from a dataset point (every summary field is a scalar there)."""
     row: dict[str, Any] = {"static_friction": float(mu), "kinetic_friction": float(mu_k)}
     for key in SWEEP_COLUMNS[2:]:
-        row[key] = _value(point[key].values.reshape(-1)[0])
+        if key in point:
+            row[key] = _value(point[key].values.reshape(-1)[0])
     row["overturned"] = bool(row["overturned"])
     return row
 
 
 def _rows_by_design(friction_design: Callable[..., Any], system: Any, motion: Any, frictions: list[float],
-                    ratio: float, options: Any, free_time: float, sliding_limit: float | None, progress: Progress,
-                    total: int):
-    """Rows and the recommended μs from :func:`rocking.analyses.design.friction_design`."""
+                    ratio: float, options: Any, free_time: float, sliding_limit: float | None,
+                    friction_scatter: float, progress: Progress, total: int):
+    """Rows (one per μs: the run at the nominal friction, and the design's judgement over the
+    scatter band) and the Dataset of :func:`rocking.analyses.design.friction_design`, which
+    ranks the values and writes the verdict: the page keeps no rule of its own."""
 
     def tick(done: int, n: int) -> None:
         progress(done, total, f"{done} of {n} runs")
 
+    name = str(getattr(motion, "name", "") or "record")
     ds = friction_design(
-        system, {"record": motion}, mu_s=frictions, mu_k_ratio=ratio, sliding_limit=sliding_limit,
-        free_time=free_time, options=options, workers=1, chunk_size=1, progress=tick,
+        system, {name: motion}, mu_s=frictions, mu_k_ratio=ratio, sliding_limit=sliding_limit,
+        friction_scatter=friction_scatter, free_time=free_time, options=options, workers=1, chunk_size=1,
+        progress=tick,
     )
     rows = []
     for i, mu in enumerate(ds.mu_s.values):
         point = ds.isel(mu_s=i, pedestal_mass=0, motion=0)
         row = _row(float(mu), float(ds.mu_k.values[i]), point)
-        row["feasible"] = bool(ds.feasible.values[i, 0])
+        row["safe"] = bool(ds.safe.values[i, 0])
+        row["falls"] = bool(ds.falls.values[i, 0, 0])
+        row["undetermined"] = bool(ds.undetermined.values[i, 0, 0])
+        row["clearance"] = float(ds.clearance.values[i, 0, 0])
+        row["meets_limits"] = bool(ds.feasible.values[i, 0])
+        row["inverted"] = bool(ds.inverted.values[i])
+        row["recommended"] = bool(ds.recommended.values[i, 0])
         rows.append(row)
-    recommended = ds.attrs.get("recommended_mu_s", float("nan"))
-    return rows, (None if not math.isfinite(recommended) else float(recommended))
-
-
-def _rows_by_sweep(system: Any, motion: Any, frictions: list[float], ratio: float, options: Any,
-                   duration: float, progress: Progress, total: int):
-    """Rows from :func:`rocking.analyses.batch.sweep`, one μs at a time (for the progress bar)."""
-    from dataclasses import replace
-
-    from ..analyses.batch import sweep
-    from ..contact.friction import Friction
-
-    # μk = None on the base: the sweep sets μs first, then μk = ratio·μs (never μk > μs midway)
-    base = replace(system, pedestal=replace(system.pedestal, friction=Friction(static=max(frictions))))
-    rows = []
-    for i, mu in enumerate(frictions):
-        progress(i, total, f"{i} of {len(frictions)} runs")
-        ds = sweep(base, motion, {"pedestal.friction.static": [mu], "pedestal.friction.ratio": [ratio]},
-                   options=options, duration=duration, workers=1)
-        rows.append(_row(mu, ratio * mu, ds))
-    return rows, None
+    return rows, ds
 
 
 def _csv_value(v: Any) -> Any:
@@ -220,7 +191,8 @@ def _write_csv(rows: list[Mapping[str, Any]], path: Path) -> None:
     path.write_text(buf.getvalue(), encoding="utf-8")
 
 
-def _plot_sweep(rows: list[Mapping[str, Any]], best: Mapping[str, Any], path: Path, dpi: int) -> None:
+def _plot_sweep(rows: list[Mapping[str, Any]], best: Mapping[str, Any], path: Path, dpi: int, *,
+                recommended: bool, friction_scatter: float, tan_alpha: float, sliding_limit: float | None) -> None:
     from matplotlib.figure import Figure
 
     mu = [r["static_friction"] for r in rows]
@@ -228,20 +200,31 @@ def _plot_sweep(rows: list[Mapping[str, Any]], best: Mapping[str, Any], path: Pa
     ax1, ax2 = fig.subplots(2, 1, sharex=True)
     top = 2.0
     ax1.plot(mu, [min(r["peak_rotation_over_alpha"], top) for r in rows], "-o", ms=3, lw=1.2, color="C0")
-    fell = [(r["static_friction"], top * 0.97) for r in rows if r["overturned"]]
+    fell = [(r["static_friction"], top * 0.97) for r in rows if r["falls"] or r["undetermined"]]
     if fell:
-        ax1.plot(*zip(*fell), "v", color="C3", ms=6, ls="none", label="overturns")
+        ax1.plot(*zip(*fell), "v", color="C3", ms=6, ls="none", label="falls (or undetermined) within the scatter")
         ax1.legend(fontsize=8, loc="upper left")
     ax1.axhline(1.0, color="0.5", lw=0.8, ls=":")
-    ax1.axvline(best["static_friction"], color="C2", lw=1.0, ls="--")
+    mu_best = best["static_friction"]
+    shown = "recommended μs" if recommended else "no safe value: the fewest falls"
+    for ax in (ax1, ax2):
+        ax.axvline(tan_alpha, color="0.4", lw=0.8, ls=":")
+        if recommended and friction_scatter > 0:  # the range over which the value's safety was checked
+            ax.axvspan(mu_best * (1 - friction_scatter), mu_best * (1 + friction_scatter), color="C2", alpha=0.12,
+                       lw=0, label=f"μs·(1 ± {friction_scatter:g})")
+        ax.axvline(mu_best, color="C2" if recommended else "C3", lw=1.0, ls="--", label=shown)
+    ax1.annotate("tan α", (tan_alpha, top * 0.97), xytext=(3, 0), textcoords="offset points", fontsize=8,
+                 color="0.35", va="top")
     ax1.set_ylim(0.0, top)
     ax1.set_ylabel("peak |θ|/α")
-    ax1.set_title("peak rotation of the statue (▼ overturned; dashed: best value)", loc="left", fontsize=9)
-    ax2.plot(mu, [1e3 * r["peak_sliding"] for r in rows], "-o", ms=3, lw=1.2, color="C1")
-    ax2.axvline(best["static_friction"], color="C2", lw=1.0, ls="--")
-    ax2.set_ylabel("peak sliding (mm)")
+    ax1.set_title("peak rotation of the statue at μs", loc="left", fontsize=9)
+    ax2.plot(mu, [1e3 * r["clearance"] for r in rows], "-o", ms=3, lw=1.2, color="C1")
+    if sliding_limit is not None:
+        ax2.axhline(1e3 * sliding_limit, color="0.2", lw=0.9, ls="-.", label="sliding limit")
+    ax2.legend(fontsize=8, loc="upper right")
+    ax2.set_ylabel("free space needed (mm)")
     ax2.set_xlabel("pedestal floor friction μs")
-    ax2.set_title("peak sliding of the pedestal on the floor", loc="left", fontsize=9)
+    ax2.set_title("largest peak sliding of the pedestal over the friction scatter", loc="left", fontsize=9)
     for ax in (ax1, ax2):
         ax.grid(True, lw=0.3, alpha=0.6)
     fig.savefig(path, dpi=dpi, metadata={"Software": None})
@@ -249,8 +232,14 @@ def _plot_sweep(rows: list[Mapping[str, Any]], best: Mapping[str, Any], path: Pa
 
 def _describe(row: Mapping[str, Any]) -> str:
     if row["overturned"]:
-        return f"overturns at {row['overturn_time']:.2f} s"
-    return f"peak {row['peak_rotation_over_alpha']:.3f} α, pedestal slides at most {1e3 * row['peak_sliding']:.1f} mm"
+        at = f"overturns at {row['overturn_time']:.2f} s"
+    else:
+        at = f"peak {row['peak_rotation_over_alpha']:.3f} α, pedestal slides at most {1e3 * row['peak_sliding']:.1f} mm"
+    judged = ("safe" if row["safe"] else "falls within the scatter" if row["falls"]
+              else "undetermined within the scatter")
+    return (f"{at}; {judged}, needs {1e3 * row['clearance']:.1f} mm of free space"
+            + ("" if row["meets_limits"] else ", misses a limit")
+            + ("; μs inverts the concept" if row["inverted"] else ""))
 
 
 def sweep_task(
@@ -259,27 +248,32 @@ def sweep_task(
     frictions: list[float],
     out_dir: str,
     sliding_limit: float | None = None,
+    friction_scatter: float | None = None,
     dpi: int = 90,
     progress: Progress = _no_progress,
 ) -> dict[str, Any]:
     """Sweep the pedestal's floor friction μs over ``frictions`` (μk/μs kept as in ``config``) under
-    the configured record, recommend one value, and write ``sweep.csv``, ``sweep.png``, the report
-    of the recommended value (``report.html`` and ``report.pdf`` from
-    :func:`rocking.report.write_report`) and ``sweep-report.zip`` with all of them.
-
-    Uses :func:`rocking.analyses.design.friction_design` when that module is there, else
-    :func:`rocking.analyses.batch.sweep` with the same rule (:func:`best_row`).
+    the configured record with :func:`rocking.analyses.design.friction_design` (its ranking and
+    verdict, the same as ``rocking design``), and write ``sweep.csv``, ``sweep.png``, the report
+    of the value it recommends (``report.html`` and ``report.pdf`` from
+    :func:`rocking.report.write_report`; with no safe value, of the one with the fewest falls) and
+    ``sweep-report.zip`` with all of them.
 
     Parameters
     ----------
     sliding_limit : float, optional
         Largest acceptable peak sliding of the pedestal, m (the free space around it).
+    friction_scatter : float, optional
+        Relative scatter s of the floor friction (default that of ``friction_design``, 0.2).
 
     Returns
     -------
     dict
-        ``rows`` (one per μs), ``best`` (the recommended row), ``meets_limits``, ``verdict`` (of the
-        recommended value), ``rule``, ``ratio`` (μk/μs), ``duration``, ``method``, ``files``.
+        ``rows`` (one per μs), ``best`` (the row the report shows), ``recommended`` (whether it is
+        a recommendation), ``meets_limits`` (whether it meets every requirement), ``design_verdict``
+        (the first line) and ``design_lines`` (the ways out and warnings), ``verdict`` (of the
+        report's single run), ``rule``, ``friction_scatter``, ``tan_alpha``, ``ratio`` (μk/μs),
+        ``duration``, ``method``, ``files``.
     """
     from ..io.config import load_config
     from ..report import verdict, write_report
@@ -293,53 +287,59 @@ def sweep_task(
     system, motion, options, duration = cfg.to_specs()
     fr = system.pedestal.friction
     ratio = fr.mu_k / fr.mu_s if fr.mu_s > 0 else 1.0
-    top_limit = system.statue.friction.mu_s if system.statue.friction is not None else None
+    from ..analyses.design import DEFAULT_FRICTION_SCATTER, friction_design, friction_factors, ranking_rule
+
+    scatter = DEFAULT_FRICTION_SCATTER if friction_scatter is None else float(friction_scatter)
     n = len(frictions)
-    total = n + 1
+    n_runs = n * len(friction_factors(scatter))
+    total = n_runs + 1
     progress(0, total, "starting")
-    try:
-        from ..analyses.design import friction_design
-    except ImportError:
-        friction_design = None
-    if friction_design is not None:
-        method = "friction design"
-        end = float(motion.duration)
-        shaken = motion.trimmed(duration) if duration < end else motion
-        rows, recommended = _rows_by_design(friction_design, system, shaken, frictions, ratio, options,
-                                            max(0.0, duration - end), sliding_limit, progress, total)
+    method = "friction design"
+    end = float(motion.duration)
+    if duration is None:  # the motion, then free motion until at rest (capped)
+        shaken, free = motion, options.free_time_limit
     else:
-        method = "batch sweep"
-        rows, recommended = _rows_by_sweep(system, motion, frictions, ratio, options, duration, progress, total)
-    progress(n, total, "writing the report")
-    best, meets = best_row(rows, sliding_limit, top_limit)
-    if recommended is not None:  # the design module's choice (the same rule)
-        best = min(rows, key=lambda r: abs(r["static_friction"] - recommended))
-        meets = True
-    limits = []
-    if sliding_limit is not None:
-        limits.append(f"peak sliding ≤ {1e3 * sliding_limit:g} mm")
-    if top_limit is not None:
-        limits.append(f"friction needed under the statue ≤ its μs = {top_limit:g}")
-    rule = RULE + (f" (limits: {', '.join(limits)})" if limits else " (no limits given)")
-    if not meets:
-        rule = "no value meets the limits (" + ", ".join(limits) + "): the best value regardless of them"
+        shaken = motion.trimmed(duration) if duration < end else motion
+        free = max(0.0, duration - end)
+    rows, ds = _rows_by_design(friction_design, system, shaken, frictions, ratio, options,
+                               free, sliding_limit, scatter, progress, total)
+    progress(n_runs, total, "writing the report")
+    a = ds.attrs
+    lines = str(a["verdict_lines"]).split("\n")
+    recommended = math.isfinite(a["recommended_mu_s"])
+    meets = bool(a["meets_every_requirement"])
+    # the single run the report shows: the recommendation; with none (no value is safe), the
+    # value the design names as the one with the fewest falls
+    shown = a["recommended_mu_s"] if recommended else a["fewest_overturns_mu_s"]
+    best = next(r for r in rows if r["static_friction"] == shown)
+    rule = ranking_rule(scatter, a["objective"])
     chosen = json.loads(json.dumps(config))
     chosen["pedestal"]["friction"] = {"static": best["static_friction"], "kinetic": best["kinetic_friction"]}
-    chosen.setdefault("simulation", {})["duration"] = duration
+    if duration is not None:
+        chosen.setdefault("simulation", {})["duration"] = duration
     cfg_best, response = run_response(chosen)
     _write_csv(rows, out / "sweep.csv")
-    _plot_sweep(rows, best, out / "sweep.png", dpi)
+    _plot_sweep(rows, best, out / "sweep.png", dpi, recommended=recommended, friction_scatter=scatter,
+                tan_alpha=float(a["tan_alpha"]), sliding_limit=sliding_limit)
     sweep_inputs = {
         "friction design sweep": {
             "values of the pedestal's floor friction μs": f"{n}, from {frictions[0]:g} to {frictions[-1]:g}",
             "μk/μs": f"{ratio:g}",
-            "recommended μs": f"{best['static_friction']:g}",
+            "friction scatter s": f"{scatter:g} (each value also runs at μs·(1 ± s), μk alike)",
+            "verdict": " ".join(lines),
+            "recommended μs": f"{best['static_friction']:g}" if recommended else "none: no value is safe",
             "rule": rule,
             "computed with": method,
             **{f"μs = {r['static_friction']:.4g}": _describe(r) for r in rows},
         }
     }
-    title = f"Friction design sweep — report for the pedestal's floor friction μs = {best['static_friction']:.4g}"
+    if recommended and meets:
+        which = "the recommended"
+    elif recommended:
+        which = "the recommended (safe, but not within every limit)"
+    else:
+        which = "no safe value; the fewest falls with"
+    title = f"Friction design sweep — {which} pedestal floor friction μs = {best['static_friction']:.4g}"
     write_report((cfg_best, response), out, title=title, inputs=sweep_inputs, dpi=dpi)
     files = ["report.html", "report.pdf", "sweep.csv", "sweep.png"]
     with zipfile.ZipFile(out / "sweep-report.zip", "w", compression=zipfile.ZIP_DEFLATED) as zf:
@@ -350,10 +350,15 @@ def sweep_task(
     return {
         "rows": rows,
         "best": best,
+        "recommended": recommended,
         "meets_limits": meets,
+        "design_verdict": lines[0],
+        "design_lines": lines[1:],
         "rule": rule,
+        "friction_scatter": scatter,
+        "tan_alpha": float(a["tan_alpha"]),
         "ratio": ratio,
-        "duration": duration,
+        "duration": response.end_time,
         "method": method,
         "verdict": verdict(response),
         "files": [name for name in files if (out / name).exists()] + ["sweep-report.zip"],

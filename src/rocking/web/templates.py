@@ -52,7 +52,7 @@ fieldset.off label:not(.check) { opacity: 0.45; }
 .figures figure { margin: 0; }
 .figures img { max-width: 100%; border: 1px solid #e1e4e8; background: #fff; }
 figcaption { font-size: 0.82em; color: #556; margin-top: 0.2em; max-width: 640px; }
-ul.warnings li { color: #8a4b00; }
+ul.warnings li, li.warning { color: #8a4b00; }
 progress { width: 100%; height: 1.3em; }
 .muted { color: #667; font-size: 0.85em; }
 a.download { display: inline-block; margin: 0.3em 0.8em 0.3em 0; }
@@ -121,7 +121,7 @@ _FORM = """
       </select>
     </label>
     <label>value <input id="scale_value" name="scale_value" type="text" inputmode="decimal" value="{{ form.scale_value }}"></label>
-    <label>duration (s) <input id="duration" name="duration" type="text" inputmode="decimal" value="{{ form.duration }}" placeholder="the record's length"></label>
+    <label>duration (s) <input id="duration" name="duration" type="text" inputmode="decimal" value="{{ form.duration }}" placeholder="the record's length" title="at most {{ max_duration }} s on this server"></label>
   </fieldset>
   <fieldset>
     <legend>Statue</legend>
@@ -152,6 +152,9 @@ _FORM = """
     <label>values (2–{{ max_sweep_points }}) <input id="sweep_points" name="sweep_points" type="text" inputmode="numeric" value="{{ form.sweep_points }}"></label>
     <label>sliding limit (mm) <input id="sweep_sliding_limit" name="sweep_sliding_limit" type="text" inputmode="decimal" value="{{ form.sweep_sliding_limit }}" placeholder="none"></label>
     <p class="hint">The free space around the pedestal: values that let it slide farther are not recommended.</p>
+    <label>friction scatter s <input id="sweep_scatter" name="sweep_scatter" type="text" inputmode="decimal" value="{{ form.sweep_scatter }}" placeholder="0.2"></label>
+    <p class="hint">Measured friction varies with the surfaces, humidity and age: a value counts as safe only if the
+      statue stands at μs·(1 − s), μs and μs·(1 + s), μk alike (0 checks μs alone).</p>
     <div class="buttons"><button id="sweep" class="secondary" type="submit" formaction="{{ url_for('start_sweep') }}">Run design sweep</button></div>
   </fieldset>
   <p id="busy">Running… (at most {{ timeout }} s)</p>
@@ -292,11 +295,17 @@ _SWEEP = """{% extends "base.html" %}
       <div id="error" class="error" role="alert"><strong>The design sweep failed:</strong> {{ job.error }}</div>
     {% else %}
       {% set r = job.result %}
-      <p id="verdict" class="verdict {{ 'fails' if r.best.overturned else ('safe' if r.meets_limits else 'stopped') }}">
-        Recommended pedestal floor friction: μs = {{ "%.4g"|format(r.best.static_friction) }}
-        (μk = {{ "%.4g"|format(r.best.kinetic_friction) }}). {{ r.verdict }}</p>
-      <p class="muted" id="sweep-rule">Chosen as {{ r.rule }}. {{ r.rows|length }} values of μs, {{ "%.2f"|format(r.duration) }} s
-        simulated each ({{ r.method }}).</p>
+      <p id="verdict" class="verdict {{ 'safe' if r.meets_limits else ('stopped' if r.recommended else 'fails') }}">{{ r.design_verdict }}</p>
+      {% if r.design_lines %}
+      <ul id="sweep-verdict-lines">
+        {% for line in r.design_lines %}<li{% if line.startswith('Warning') %} class="warning"{% endif %}>{{ line }}</li>{% endfor %}
+      </ul>
+      {% endif %}
+      <p id="sweep-run-verdict">The report's run, at μs = {{ "%.4g"|format(r.best.static_friction) }}
+        (μk = {{ "%.4g"|format(r.best.kinetic_friction) }}): {{ r.verdict }}</p>
+      <p class="muted" id="sweep-rule">Ranking: {{ r.rule }}. {{ r.rows|length }} values of μs{% if r.friction_scatter %},
+        each also at μs·(1 ± {{ "%g"|format(r.friction_scatter) }}){% endif %}; {{ "%.2f"|format(r.duration) }} s
+        simulated in the report's run ({{ r.method }}).</p>
       <p id="downloads">
         <a class="download" id="download-report" href="{{ url_for('sweep_file', job_id=job.id, name='report.html') }}">report (HTML)</a>
         {% if 'report.pdf' in r.files %}<a class="download" id="download-pdf" href="{{ url_for('sweep_file', job_id=job.id, name='report.pdf') }}" download>report (PDF)</a>{% endif %}
@@ -306,13 +315,16 @@ _SWEEP = """{% extends "base.html" %}
       <div class="figures">
         <figure><img id="sweep-plot" alt="peak rotation and sliding against the pedestal's friction" src="{{ url_for('sweep_file', job_id=job.id, name='sweep.png') }}"></figure>
         <table id="sweep-table">
-          <tr><th>μs</th><th>μk</th><th>overturns</th><th>peak θ/α</th><th>peak sliding</th><th>impacts</th></tr>
+          <tr><th>μs</th><th>μk</th><th>overturns at μs</th><th>peak θ/α</th><th>peak sliding</th><th>impacts</th>
+            <th>within μs·(1 ± s)</th><th>free space needed</th><th>limits</th></tr>
           {% for row in r.rows %}
           <tr{% if row.static_friction == r.best.static_friction %} class="best"{% endif %}>
-            <td>{{ "%.4g"|format(row.static_friction) }}</td><td>{{ "%.4g"|format(row.kinetic_friction) }}</td>
+            <td>{{ "%.4g"|format(row.static_friction) }}{% if row.inverted %} ⚠{% endif %}</td><td>{{ "%.4g"|format(row.kinetic_friction) }}</td>
             <td>{% if row.overturned %}at {{ "%.2f"|format(row.overturn_time) }} s{% else %}no{% endif %}</td>
             <td>{{ "%.3f"|format(row.peak_rotation_over_alpha) }}</td>
             <td>{{ "%.1f"|format(1000 * row.peak_sliding) }} mm</td><td>{{ row.impacts }}</td>
+            <td>{% if row.safe %}safe{% elif row.falls %}falls{% else %}undetermined{% endif %}</td>
+            <td>{{ "%.1f"|format(1000 * row.clearance) }} mm</td><td>{% if row.meets_limits %}met{% else %}missed{% endif %}</td>
           </tr>
           {% endfor %}
         </table>
