@@ -307,3 +307,19 @@ def test_design_sweep_progress_and_report(server, browser):
     csv_href = browser.find_element(By.ID, "download-csv").get_attribute("href")
     with urllib.request.urlopen(csv_href, timeout=30) as resp:
         assert len(resp.read().decode().strip().splitlines()) == 6
+
+
+def test_a_run_over_the_servers_limits_shows_the_message(server, browser):
+    """The server refuses a run longer than its --max-duration (600 s by default) before any worker
+    starts, and the page says which field to change, keeping what was typed."""
+    from selenium.webdriver.common.by import By
+
+    browser.get(server + "/")
+    choose_record(browser, RECORD)
+    fill(browser, {**INPUTS, "duration": "1e6"})
+    browser.find_element(By.ID, "run").click()
+    error = wait_for(browser, "#error").text
+    assert "Over this server's limits: duration: at most 600 s on this server, got 1e+06 s" in error
+    assert not browser.find_elements(By.ID, "verdict")
+    assert browser.find_element(By.ID, "duration").get_attribute("value") == "1e6"
+    assert "600 s" in browser.find_element(By.ID, "duration").get_attribute("title")

@@ -15,6 +15,7 @@ the order). ``fn`` must be a module-level function and its arguments picklable.
 from __future__ import annotations
 
 import os
+import signal
 from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from typing import Any
@@ -45,11 +46,38 @@ class SerialExecutor:
         return "SerialExecutor()"
 
 
+def _worker_init() -> None:
+    """Signals in a local worker process.
+
+    Ctrl-C in a terminal reaches every process of the group; only the main process acts on it (it
+    stops the workers, below), so the workers ignore it, instead of each printing a traceback.
+    SIGTERM and SIGHUP get back their default action (end at once): the workers are forked from
+    the main process, whose command line turns them into exceptions for its own clean-up.
+    """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    for name in ("SIGTERM", "SIGHUP"):
+        sig = getattr(signal, name, None)
+        if sig is not None:
+            signal.signal(sig, signal.SIG_DFL)
+
+
+def _stop_workers(pool: ProcessPoolExecutor) -> None:
+    """Terminate the pool's processes: after an interrupt (or an error) the chunks they are running
+    are lost anyway, and waiting for them could delay the exit by a whole chunk."""
+    # the executor has no public way to stop running tasks (until Python 3.14)
+    for proc in list((getattr(pool, "_processes", None) or {}).values()):
+        try:
+            proc.terminate()
+        except (OSError, ValueError, AttributeError):  # already gone
+            pass
+
+
 class LocalExecutor:
     """``n`` local worker processes (a :class:`concurrent.futures.ProcessPoolExecutor` per call).
 
     At most ``2·n`` tasks are queued at a time, so an interrupted study has started little work
-    that it then loses.
+    that it then loses. On an interrupt (or any error) the workers are terminated at once; they
+    ignore Ctrl-C themselves (see :func:`_worker_init`).
     """
 
     def __init__(self, workers: int | None = None):
@@ -62,8 +90,12 @@ class LocalExecutor:
         if self.workers == 1 or len(items) <= 1:
             yield from map(fn, items)
             return
-        with ProcessPoolExecutor(max_workers=min(self.workers, len(items))) as pool:
-            yield from pool.map(fn, items)
+        with ProcessPoolExecutor(max_workers=min(self.workers, len(items)), initializer=_worker_init) as pool:
+            try:
+                yield from pool.map(fn, items)
+            except BaseException:
+                _stop_workers(pool)
+                raise
 
     def as_completed(self, fn: Callable[[Any], Any], iterable: Iterable[Any]) -> Iterator[tuple[int, Any]]:
         items = list(iterable)
@@ -71,7 +103,7 @@ class LocalExecutor:
             for i, x in enumerate(items):
                 yield i, fn(x)
             return
-        pool = ProcessPoolExecutor(max_workers=min(self.workers, len(items)))
+        pool = ProcessPoolExecutor(max_workers=min(self.workers, len(items)), initializer=_worker_init)
         pending: dict[Any, int] = {}
         queue = iter(enumerate(items))
         try:
@@ -87,6 +119,9 @@ class LocalExecutor:
                     nxt = next(queue, None)
                     if nxt is not None:
                         pending[pool.submit(fn, nxt[1])] = nxt[0]
+        except BaseException:
+            _stop_workers(pool)
+            raise
         finally:
             for fut in pending:
                 fut.cancel()

@@ -9,6 +9,10 @@ restart the manifest's hash must match the inputs of the study being run: the fo
 different study (or of the same study with changed inputs) is refused unless ``fresh=True``,
 which empties it first.
 
+An interrupted :func:`run_chunks` (Ctrl-C, or SIGTERM turned into a ``KeyboardInterrupt`` by the
+command line) raises :class:`StudyInterrupted`, which says how many runs are saved; a chunk file
+that cannot be read (a damaged disk, an edited file) raises :class:`CorruptChunkError` naming it.
+
     >>> store = ChunkStore("out/chunks", study="demo", fingerprint=fingerprint({"a": 1}), n_chunks=3)  # doctest: +SKIP
     >>> results = run_chunks(task, payloads, store=store, workers=2)                                   # doctest: +SKIP
 """
@@ -21,8 +25,10 @@ import json
 import math
 import os
 import re
+import signal
 import time
 import uuid
+import zipfile
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -32,8 +38,8 @@ import numpy as np
 from .executors import as_executor
 
 __all__ = [
-    "ChunkStore", "Run", "StoreMismatchError", "chunk_ranges", "default_chunk_size", "fingerprint", "run_chunks",
-    "run_stored", "scale_motion",
+    "ChunkStore", "CorruptChunkError", "Run", "StoreMismatchError", "StudyInterrupted", "chunk_ranges",
+    "default_chunk_size", "fingerprint", "run_chunks", "run_stored", "scale_motion",
 ]
 
 MANIFEST = "manifest.json"
@@ -44,6 +50,51 @@ _FORMAT = 1
 
 class StoreMismatchError(ValueError):
     """The study folder holds the chunks of other inputs (or of another study)."""
+
+
+class CorruptChunkError(StoreMismatchError):
+    """A saved chunk (or the manifest) cannot be read; the message names the file.
+
+    Chunks are written atomically, so this means a damaged disk or a file changed by hand; the
+    way out is to delete that file (its runs are redone) or to start afresh (``--fresh``).
+
+    Attributes
+    ----------
+    path : pathlib.Path
+        The unreadable file.
+    """
+
+    def __init__(self, path: Path, problem: str):
+        self.path = Path(path)
+        super().__init__(
+            f"{path}: {problem}; delete this file to rerun its runs, or start the study afresh "
+            f"with --fresh (fresh=True in Python)"
+        )
+
+
+class StudyInterrupted(KeyboardInterrupt):
+    """A study stopped by Ctrl-C (or SIGTERM) after saving ``saved`` of its ``total`` runs.
+
+    A ``KeyboardInterrupt``, so that code that handles Ctrl-C handles it; its text is the line the
+    command line prints.
+
+    Attributes
+    ----------
+    saved, total : int
+        Runs saved in the study folder (including those of earlier sessions), and all its runs.
+    folder : pathlib.Path
+        The study folder (the chunks).
+    signum : int
+        The signal that stopped it (``signal.SIGINT`` for Ctrl-C).
+    """
+
+    def __init__(self, saved: int, total: int, folder: str | os.PathLike[str],
+                 signum: int = signal.SIGINT):
+        self.saved, self.total = int(saved), int(total)
+        self.folder = Path(folder)
+        self.signum = int(signum)
+        super().__init__(f"interrupted: {self.saved} of {self.total} runs saved; "
+                         f"rerun the same command to resume")
 
 
 # --------------------------------------------------------------------------- fingerprint
@@ -157,7 +208,12 @@ class ChunkStore:
         if self.folder.exists() and not self.folder.is_dir():
             raise StoreMismatchError(f"{self.folder} exists and is not a directory")
         self.folder.mkdir(parents=True, exist_ok=True)
-        manifest = self._read_manifest()
+        try:
+            manifest = self._read_manifest()
+        except CorruptChunkError:
+            if not fresh:
+                raise
+            manifest = {}  # fresh: an unreadable manifest is cleared like a foreign one
         if manifest is not None:
             same = (
                 manifest.get("fingerprint") == self.fingerprint
@@ -197,9 +253,12 @@ class ChunkStore:
         if not path.exists():
             return None
         try:
-            return json.loads(path.read_text(encoding="utf-8"))
+            manifest = json.loads(path.read_text(encoding="utf-8"))
         except (OSError, ValueError) as exc:
-            raise StoreMismatchError(f"{path}: unreadable manifest ({exc})") from None
+            raise CorruptChunkError(path, f"unreadable manifest ({exc})") from None
+        if not isinstance(manifest, dict):
+            raise CorruptChunkError(path, "unreadable manifest (not a JSON object)")
+        return manifest
 
     def _write_manifest(self, manifest: Mapping[str, Any]) -> None:
         text = json.dumps(manifest, indent=2, sort_keys=True, default=str) + "\n"
@@ -249,9 +308,27 @@ class ChunkStore:
         _atomic_write(self.path(index), lambda f: np.savez(f, **arrays))
 
     def load(self, index: int) -> np.ndarray | dict[str, np.ndarray]:
-        """A saved chunk, as it was given to :meth:`save`."""
-        with np.load(self.path(index), allow_pickle=False) as z:
-            data = {k: z[k] for k in z.files}
+        """A saved chunk, as it was given to :meth:`save`.
+
+        Raises
+        ------
+        CorruptChunkError
+            If the file cannot be read (naming it, and suggesting ``--fresh``).
+        """
+        path = self.path(index)
+        try:
+            with np.load(path, allow_pickle=False) as z:
+                data = {k: z[k] for k in z.files}
+        except MemoryError:
+            raise
+        except Exception as exc:  # noqa: BLE001 - zipfile, zlib, numpy and OS errors alike
+            if isinstance(exc, OSError) or zipfile.is_zipfile(path):
+                problem = f"{type(exc).__name__}: {exc}"
+            else:  # numpy's own words for it ("pickled data") would mislead
+                problem = "not a NumPy .npz archive"
+            raise CorruptChunkError(path, f"corrupted chunk file ({problem})") from None
+        if not data:
+            raise CorruptChunkError(path, "corrupted chunk file (no arrays in it)")
         if set(data) == {_ARRAY_KEY}:
             return data[_ARRAY_KEY]
         return data
@@ -308,6 +385,14 @@ def run_chunks(
     -------
     list
         The results, in the order of ``payloads``.
+
+    Raises
+    ------
+    StudyInterrupted
+        On Ctrl-C (or any ``KeyboardInterrupt``) with a ``store``: the finished chunks are saved,
+        and rerunning with the same store resumes.
+    CorruptChunkError
+        If a saved chunk cannot be read.
     """
     n = len(payloads)
     if store is not None and store.n_chunks != n:
@@ -323,20 +408,28 @@ def run_chunks(
     if progress is not None:
         progress(done, total)
     if todo:
-        executor = as_executor(workers)
-        items = [payloads[i] for i in todo]
-        if hasattr(executor, "as_completed"):
-            stream = executor.as_completed(fn, items)
-        else:
-            stream = enumerate(executor.map(fn, items))
-        for k, result in stream:
-            i = todo[k]
-            if store is not None:
-                store.save(i, result)
-            results[i] = result
-            done += weights[i]
-            if progress is not None:
-                progress(done, total)
+        try:
+            executor = as_executor(workers)
+            items = [payloads[i] for i in todo]
+            if hasattr(executor, "as_completed"):
+                stream = executor.as_completed(fn, items)
+            else:
+                stream = enumerate(executor.map(fn, items))
+            for k, result in stream:
+                i = todo[k]
+                if store is not None:
+                    store.save(i, result)
+                results[i] = result
+                done += weights[i]
+                if progress is not None:
+                    progress(done, total)
+        except KeyboardInterrupt as exc:
+            if store is None or isinstance(exc, StudyInterrupted):
+                raise
+            # counted from the folder: a chunk saved just before the interrupt counts too
+            saved = sum(weights[i] for i in store.done())
+            raise StudyInterrupted(saved, total, store.folder,
+                                   signum=getattr(exc, "signum", signal.SIGINT)) from exc
     if store is not None:
         store.mark_complete()
     return results
@@ -405,7 +498,7 @@ def _portable(motion: Any) -> Any:
 
 def _run_runs(payload: tuple[Sequence[Run], Mapping[str, Any], Any]) -> np.ndarray:
     """Worker task: the raw summary vectors of a chunk of runs."""
-    from ..solver.compiled import N_SUMMARY
+    from ..solver.compiled import N_SUMMARY, S_STATUS, STATUS_INTERRUPTED
     from .batch import run_raw
 
     runs, shipped, options = payload
@@ -414,6 +507,10 @@ def _run_runs(payload: tuple[Sequence[Run], Mapping[str, Any], Any]) -> np.ndarr
     for k, run in enumerate(runs):
         motion = scale_motion(motions[run.motion], run.factor)
         out[k] = run_raw(run.system, motion, options, run.duration)
+        if out[k, S_STATUS] == STATUS_INTERRUPTED:
+            # a run cut short by a signal is not a result: never let it into a saved chunk (the
+            # signal normally raises on its own; this holds even where it was ignored)
+            raise KeyboardInterrupt("a run of the chunk was interrupted")
     return out
 
 

@@ -1,7 +1,12 @@
 """Write a run's results to a folder: CSV and NetCDF time series, JSON summary, a figure.
 
 Everything is first written into a temporary folder next to the target and moved in
-only when all four files succeeded, so a failed run never leaves half a result.
+only when all four files succeeded, so a failed run never leaves half a result; an interrupt
+(Ctrl-C, or SIGTERM through :mod:`rocking.cli.interrupts`) removes the temporary folder too.
+
+The files grow with the number of saved samples (:func:`estimate_output_bytes`: up to about
+150 bytes a sample on disk); writing them needs little memory beyond the series itself (the CSV
+is written in blocks, and the figure draws at most a few thousand points a curve).
 """
 
 from __future__ import annotations
@@ -10,7 +15,7 @@ import json
 import math
 import os
 import shutil
-import tempfile
+import uuid
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -19,7 +24,10 @@ import numpy as np
 
 from ..models.regimes import Regime
 
-__all__ = ["OUTPUT_FILES", "jsonable", "plot_response", "summary_json", "write_outputs"]
+__all__ = [
+    "OUTPUT_FILES", "OutputSpaceError", "check_output_space", "estimate_output_bytes", "human_bytes", "jsonable",
+    "planned_samples", "plot_response", "summary_json", "write_outputs",
+]
 
 #: The files :func:`write_outputs` creates, in order.
 OUTPUT_FILES = ("timeseries.csv", "timeseries.nc", "summary.json", "response.png")
@@ -33,6 +41,21 @@ _CSV_COLUMNS = (
     ("regime", "regime", "%d"),
     ("floor_acceleration_m_per_s2", "floor_acceleration", "%.10g"),
 )
+
+# Upper bounds of the bytes per saved sample in each file. A CSV row holds six "%.10g" numbers of
+# at most 16 characters (-1.234567891e-05), a one-digit regime, six commas and a newline. The NetCDF
+# file stores t and five float64 series plus the int8 regime, uncompressed.
+CSV_ROW_BYTES = 6 * 16 + 1 + 6 + 1
+NETCDF_SAMPLE_BYTES = 6 * 8 + 1
+# HDF5 structures and the attributes (the config and the summary as JSON): measured ~20 kB.
+NETCDF_HEADER_BYTES = 100_000
+# The figure, the summary and the NetCDF header do not grow with the run (measured: < 200 kB).
+FIXED_OUTPUT_BYTES = 1_000_000
+# Rows formatted at a time by the CSV writer: its memory stays a few MB however long the run.
+_CSV_BLOCK_ROWS = 50_000
+# Points drawn per curve at most (min and max of each of half as many slices): more than the
+# figure's 960 pixel columns can show, and a few MB whatever the length of the run.
+_PLOT_POINTS = 8_000
 
 # Light shading of the regimes in the figure (REST is left blank).
 _REGIME_STYLE = (
@@ -70,12 +93,112 @@ def summary_json(summary: Mapping[str, Any]) -> str:
     return json.dumps(jsonable(summary), indent=2, ensure_ascii=False, allow_nan=False)
 
 
+# ------------------------------------------------------------------------ estimates
+class OutputSpaceError(OSError):
+    """The outputs would not fit on the target's file system (found before anything is written)."""
+
+
+def human_bytes(n: float) -> str:
+    """``4.1e10`` → ``"41 GB"`` (decimal units, three digits)."""
+    for unit in ("bytes", "kB", "MB", "GB", "TB"):
+        if abs(n) < 1000 or unit == "TB":
+            return f"{n:.3g} {unit}"
+        n /= 1000.0
+    raise AssertionError  # pragma: no cover
+
+
+def planned_samples(motion: Any, options: Any, duration: float | None) -> int:
+    """Samples of a run's saved series at most, counted as :func:`rocking.simulation.prepare`
+    counts them: one every ``options.save_dt`` s (default the record's time step, or 0.01 s)
+    over ``duration`` s, or over the motion plus ``options.free_time_limit`` s when ``duration``
+    is None. Events add a row each (a few at most, next to the grid)."""
+    t_end = float(duration) if duration is not None else float(motion.duration) + float(options.free_time_limit)
+    save_dt = options.save_dt
+    if save_dt is None:
+        save_dt = float(getattr(motion, "dt", None) or 0.01)
+    return math.floor(t_end / save_dt + 1e-9) + 1
+
+
+def estimate_output_bytes(n_samples: int) -> dict[str, int]:
+    """Upper bounds of the sizes of the files :func:`write_outputs` writes for ``n_samples`` rows.
+
+    Parameters
+    ----------
+    n_samples : int
+        Saved samples (rows of the time series; an event adds one).
+
+    Returns
+    -------
+    dict
+        ``{"timeseries.csv": bytes, "timeseries.nc": bytes, "other": bytes, "total": bytes}``.
+    """
+    n = max(0, int(n_samples))
+    sizes = {"timeseries.csv": 200 + n * CSV_ROW_BYTES, "timeseries.nc": NETCDF_HEADER_BYTES + n * NETCDF_SAMPLE_BYTES,
+             "other": FIXED_OUTPUT_BYTES}
+    sizes["total"] = sum(sizes.values())
+    return sizes
+
+
+def _existing_folder(path: Path) -> Path:
+    p = path.resolve()
+    while not p.exists() and p.parent != p:
+        p = p.parent
+    return p
+
+
+def check_output_space(n_samples: int, out_dir: str | os.PathLike[str], *, hint: str = "") -> dict[str, int]:
+    """Refuse, before anything is written, outputs larger than the free space where they go.
+
+    Parameters
+    ----------
+    n_samples : int
+        Saved samples of the run (an estimate before it, the exact count after).
+    out_dir : path-like
+        The target folder (it need not exist yet).
+    hint : str
+        What the user can change, appended to the message (e.g. which config fields).
+
+    Returns
+    -------
+    dict
+        :func:`estimate_output_bytes` of ``n_samples``.
+
+    Raises
+    ------
+    OutputSpaceError
+        If the estimate exceeds the free space of the file system that will hold ``out_dir``.
+    """
+    sizes = estimate_output_bytes(n_samples)
+    where = _existing_folder(Path(out_dir))
+    try:
+        free = shutil.disk_usage(where).free
+    except OSError:
+        return sizes  # no answer from the file system: the writer reports any real failure
+    if sizes["total"] > free:
+        raise OutputSpaceError(
+            f"--out: {n_samples:.3g} saved samples would write up to {human_bytes(sizes['total'])} "
+            f"(timeseries.csv {human_bytes(sizes['timeseries.csv'])}, timeseries.nc "
+            f"{human_bytes(sizes['timeseries.nc'])}), but only {human_bytes(free)} is free on {where}"
+            + (f"; {hint}" if hint else "")
+        )
+    return sizes
+
+
 # ------------------------------------------------------------------------- writers
 def _write_csv(response: Any, path: Path) -> None:
-    """One row per saved instant; at an event the row before and after share the time."""
-    data = np.column_stack([np.asarray(getattr(response, attr), dtype=float) for _, attr, _ in _CSV_COLUMNS])
+    """One row per saved instant; at an event the row before and after share the time.
+
+    Written in blocks of rows, so that formatting a long run does not hold a text copy of it.
+    """
+    columns = [np.asarray(getattr(response, attr)) for _, attr, _ in _CSV_COLUMNS]
     header = ",".join(name for name, _, _ in _CSV_COLUMNS)
-    np.savetxt(path, data, fmt=[f for _, _, f in _CSV_COLUMNS], delimiter=",", header=header, comments="")
+    fmt = [f for _, _, f in _CSV_COLUMNS]
+    n = columns[0].shape[0]
+    with open(path, "w", encoding="ascii", newline="") as f:
+        f.write(header + "\n")
+        for start in range(0, n, _CSV_BLOCK_ROWS):
+            block = np.column_stack([c[start:start + _CSV_BLOCK_ROWS].astype(float) for c in columns])
+            np.savetxt(f, block, fmt=fmt, delimiter=",")
 
 
 def _write_netcdf(response: Any, path: Path, config: Any = None) -> None:
@@ -89,19 +212,45 @@ def _write_netcdf(response: Any, path: Path, config: Any = None) -> None:
     ds.to_netcdf(path, engine="h5netcdf")
 
 
-def _regime_intervals(t: np.ndarray, regime: np.ndarray, code: int) -> list[tuple[float, float]]:
-    """Time intervals [t_start, t_end] during which ``regime == code``."""
+def _regime_intervals(t: np.ndarray, regime: np.ndarray, code: int, *, resolution: float = 0.0) -> np.ndarray:
+    """Time intervals [t_start, t_end] (s) during which ``regime == code``, as an (m, 2) array.
+
+    Intervals separated by less than ``resolution`` (s) are merged: a figure cannot show the gap,
+    and a long run that switches regime millions of times must not draw millions of patches.
+    """
     on = regime == code
     if not on.any():
-        return []
+        return np.empty((0, 2))
     edges = np.diff(on.astype(np.int8))
-    starts = list(np.flatnonzero(edges == 1) + 1)
-    ends = list(np.flatnonzero(edges == -1) + 1)  # first sample after the interval
+    starts = np.flatnonzero(edges == 1) + 1
+    ends = np.flatnonzero(edges == -1) + 1  # first sample after the interval
     if on[0]:
-        starts.insert(0, 0)
+        starts = np.concatenate(([0], starts))
     if on[-1]:
-        ends.append(len(on) - 1)
-    return [(float(t[a]), float(t[b])) for a, b in zip(starts, ends, strict=True)]
+        ends = np.concatenate((ends, [len(on) - 1]))
+    a, b = t[starts], t[ends]
+    if resolution > 0 and a.size > 1:
+        apart = a[1:] - b[:-1] >= resolution  # this interval starts a new patch
+        a = a[np.concatenate(([True], apart))]
+        b = b[np.concatenate((apart, [True]))]
+    return np.column_stack((a, b)).astype(float)
+
+
+def _envelope(t: np.ndarray, y: np.ndarray, points: int = _PLOT_POINTS) -> tuple[np.ndarray, np.ndarray]:
+    """At most about ``points`` samples of (t, y) that draw the same curve at figure resolution:
+    the first, the last, and the smallest and largest value of each of ``points/2`` slices, in
+    time order (peaks are kept exactly)."""
+    n = y.size
+    slices = points // 2
+    if n <= points or slices < 1:
+        return t, y
+    k = n // slices
+    body = y[: k * slices].reshape(slices, k)
+    base = np.arange(slices) * k
+    idx = np.concatenate((base + np.argmin(body, axis=1), base + np.argmax(body, axis=1),
+                          np.arange(k * slices, n), [0, n - 1]))
+    idx = np.unique(idx)
+    return t[idx], y[idx]
 
 
 def plot_response(response: Any, path: str | os.PathLike[str], *, title: str | None = None) -> None:
@@ -124,18 +273,23 @@ def plot_response(response: Any, path: str | os.PathLike[str], *, title: str | N
     from matplotlib.figure import Figure
 
     t = np.asarray(response.t, dtype=float)
-    regime = np.asarray(response.regime)
+    regime = np.asarray(response.regime_codes)
+    span = float(t[-1] - t[0]) if t.size else 0.0
     fig = Figure(figsize=(8.0, 7.5), layout="constrained")
     FigureCanvasAgg(fig)
     ax_th, ax_u, ax_a = fig.subplots(3, 1, sharex=True)
 
     for code, color, label in _REGIME_STYLE:
-        intervals = _regime_intervals(t, regime, int(code))
-        if not intervals:
+        # gaps below a pixel's worth of time are not drawn (the figure is under 1000 pixels wide)
+        intervals = _regime_intervals(t, regime, int(code), resolution=span / 2000.0)
+        if not len(intervals):
             continue
         # one collection per regime and panel: a record can switch regime thousands
         # of times, and thousands of axvspan artists make saving slow
-        verts = [[(a, 0.0), (b, 0.0), (b, 1.0), (a, 1.0)] for a, b in intervals]
+        a, b = intervals[:, 0], intervals[:, 1]
+        zero, one = np.zeros_like(a), np.ones_like(a)
+        verts = np.stack((np.column_stack((a, zero)), np.column_stack((b, zero)),
+                          np.column_stack((b, one)), np.column_stack((a, one))), axis=1)
         for ax in (ax_th, ax_u, ax_a):
             ax.add_collection(
                 PolyCollection(verts, transform=ax.get_xaxis_transform(), facecolor=color,
@@ -144,12 +298,15 @@ def plot_response(response: Any, path: str | os.PathLike[str], *, title: str | N
             )
 
     alpha = float(response.alpha)
-    ax_th.plot(t, np.asarray(response.theta) / alpha, color="k", lw=0.9)
+    ax_th.plot(*_envelope(t, np.asarray(response.theta) / alpha), color="k", lw=0.9)
     for y in (-1.0, 1.0):  # |θ| = α: static instability of the statue
         ax_th.axhline(y, color="0.5", lw=0.6, ls=":")
     impacts = [imp.time for imp in response.impacts]
     if impacts:
-        ax_th.plot(impacts, np.zeros(len(impacts)), ls="none", marker="|", ms=9, color="tab:red",
+        shown = np.unique(np.asarray(impacts, dtype=float))
+        if shown.size > _PLOT_POINTS:  # marks closer than a pixel draw the same picture
+            shown = np.unique(np.round(shown / (span / _PLOT_POINTS)) * (span / _PLOT_POINTS))
+        ax_th.plot(shown, np.zeros(shown.size), ls="none", marker="|", ms=9, color="tab:red",
                    label=f"impacts ({len(impacts)})")
     if response.overturned and response.overturn_time is not None:
         for ax in (ax_th, ax_u, ax_a):
@@ -159,9 +316,9 @@ def plot_response(response: Any, path: str | os.PathLike[str], *, title: str | N
     if ax_th.get_legend_handles_labels()[0]:  # at rest all along: nothing to explain
         ax_th.legend(loc="upper right", fontsize="small", ncol=3, framealpha=0.8)
 
-    ax_u.plot(t, 1e3 * np.asarray(response.u), color="k", lw=0.9)
+    ax_u.plot(*_envelope(t, 1e3 * np.asarray(response.u)), color="k", lw=0.9)
     ax_u.set_ylabel("u (mm)")
-    ax_a.plot(t, np.asarray(response.floor_acceleration), color="k", lw=0.7)
+    ax_a.plot(*_envelope(t, np.asarray(response.floor_acceleration)), color="k", lw=0.7)
     ax_a.set_ylabel("floor acceleration (m/s²)")
     ax_a.set_xlabel("t (s)")
     if t.size:
@@ -222,13 +379,13 @@ def write_outputs(
     out = Path(out_dir)
     if out.exists() and not out.is_dir():
         raise NotADirectoryError(f"{out}: exists and is not a directory")
-    created = _make_parents(out.parent)
+    created: list[Path] = []
+    # the name before the folder, and the folder inside the try: an interrupt at any moment
+    # (Ctrl-C, or SIGTERM through rocking.cli.interrupts) leaves no temporary folder behind
+    tmp = out.parent / f".{out.name}.tmp-{uuid.uuid4().hex[:12]}"
     try:
-        tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.tmp-", dir=out.parent))
-    except BaseException:
-        _remove_empty(created)
-        raise
-    try:
+        created = _make_parents(out.parent)
+        tmp.mkdir(mode=0o700)  # private while it fills, like mkdtemp's
         title = None
         if config is not None and getattr(config, "source", None):
             title = Path(config.source).name

@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
 
-from flask import Flask, abort, jsonify, redirect, render_template, request, send_from_directory, url_for
+from flask import Flask, abort, g, jsonify, redirect, render_template, request, send_from_directory, url_for
 from jinja2 import DictLoader
 from werkzeug.exceptions import HTTPException, RequestEntityTooLarge
 from werkzeug.utils import secure_filename
@@ -29,7 +29,7 @@ from werkzeug.utils import secure_filename
 from .. import __version__
 from ..constants import STANDARD_GRAVITY
 from ..io.config import ConfigError, load_config
-from ..io.records import RecordError, bundled_records, read_record
+from ..io.records import RecordError, UnitsConflictError, bundled_records, read_record
 from . import tasks
 from .jobs import DONE, JobRunner
 from .templates import TEMPLATES
@@ -43,7 +43,10 @@ DEFAULTS: dict[str, Any] = {
     "RUN_TIMEOUT": 120.0,  # s, one run (simulation, plots and animation)
     "SWEEP_TIMEOUT": 600.0,  # s, one design sweep with its report
     "MAX_UPLOAD": 5 * 1024 * 1024,  # bytes of an uploaded record
-    "MAX_SWEEP_POINTS": 41,
+    "MAX_SWEEP_POINTS": 41,  # values of μs in one design sweep (the grid)
+    "MAX_DURATION": 600.0,  # s, the longest a run may last (the record and the free motion after it)
+    "MAX_SAMPLES": 1_000_000,  # saved samples of one run (simulation.max_samples): ~40 MB, plots included < 0.5 GB
+    "MAX_JOBS_PER_CLIENT": 2,  # runs and sweeps at once from one address (at most MAX_WORKERS - 1)
     "MAX_WORKERS": None,  # worker processes at once (default max(4, CPUs))
     "QUEUE_TIMEOUT": 60.0,  # s a job waits for a free worker
     "KEEP_RUNS": 200,  # run and sweep folders kept on disk (oldest removed first)
@@ -77,6 +80,7 @@ _FORM_DEFAULTS = {
     "sweep_to": "0.6",
     "sweep_points": "12",
     "sweep_sliding_limit": "",
+    "sweep_scatter": "0.2",
 }
 
 _FORMATS = [("", "detect"), ("peer", "PEER AT2"), ("esm", "ESM ASCII"), ("two-column", "two-column text")]
@@ -116,6 +120,83 @@ _ID_RE = re.compile(r"^[0-9a-f]{32}$")
 
 class FormError(ValueError):
     """A problem with the form's values; the message is shown on the page as is."""
+
+
+class LimitError(FormError):
+    """A request over this server's limits (duration, saved samples); shown on the page as is."""
+
+
+def check_limits(config: Any, max_duration: float, max_samples: int) -> None:
+    """Refuse a run longer than ``max_duration`` (s) or saving more than ``max_samples`` samples,
+    before any worker starts.
+
+    Parameters
+    ----------
+    config : rocking.io.config.Config
+        The validated run.
+
+    Raises
+    ------
+    LimitError
+        Naming the form's field (duration, or the record) and the limit.
+    """
+    from ..io.output import planned_samples
+
+    _, motion, options, duration = config.to_specs()
+    if duration is not None:
+        t_end, what = float(duration), "duration"
+        if t_end > max_duration:
+            raise LimitError(f"duration: at most {max_duration:g} s on this server, got {t_end:g} s")
+    else:
+        t_end = float(motion.duration) + float(options.free_time_limit)
+        if t_end > max_duration:
+            raise LimitError(
+                f"record: {getattr(motion, 'name', 'the motion')} lasts {float(motion.duration):g} s, and with up to "
+                f"{float(options.free_time_limit):g} s of motion after it the run could last {t_end:g} s, over this "
+                f"server's limit of {max_duration:g} s; enter a duration of at most {max_duration:g} s"
+            )
+        what = "the record's length"
+    n = planned_samples(motion, options, duration)
+    save_dt = options.save_dt or getattr(motion, "dt", None) or 0.01
+    if n > max_samples:
+        raise LimitError(
+            f"duration: the run would save {n:.3g} samples (one every {save_dt:g} s over "
+            f"{what}, {t_end:g} s), over this server's limit of {max_samples:.3g}; enter a shorter duration"
+        )
+
+
+class _Clients:
+    """Runs and sweeps in progress per client address, so that one client cannot take every worker.
+
+    Behind a reverse proxy every request comes from the proxy's address: all its users then
+    share one quota (the app does not trust ``X-Forwarded-For``, which any client can forge).
+    """
+
+    def __init__(self, limit: int):
+        self.limit = max(1, int(limit))
+        self._lock = threading.Lock()
+        self._active: dict[str, int] = {}
+
+    def claim(self, client: str) -> bool:
+        """Count one more job for ``client``; False (and nothing counted) if it is at its limit."""
+        with self._lock:
+            n = self._active.get(client, 0)
+            if n >= self.limit:
+                return False
+            self._active[client] = n + 1
+            return True
+
+    def release(self, client: str) -> None:
+        with self._lock:
+            n = self._active.get(client, 0) - 1
+            if n > 0:
+                self._active[client] = n
+            else:
+                self._active.pop(client, None)
+
+    def active(self, client: str) -> int:
+        with self._lock:
+            return self._active.get(client, 0)
 
 
 # ----------------------------------------------------------------------------------- the form
@@ -253,6 +334,31 @@ def parse_sweep(form: Mapping[str, Any], max_points: int) -> tuple[list[float], 
     return [lo + (hi - lo) * i / (n - 1) for i in range(n)], (None if limit_mm is None else limit_mm / 1000.0)
 
 
+def _units_conflict_message(exc: UnitsConflictError) -> str:
+    """The units selector contradicts the file's header. The page offers no override: the
+    selector is for files that do not state their units, and a wrong header is fixed in the file."""
+    chosen = dict(_UNITS).get(exc.given_units, exc.given_units)
+    line = f" (line {exc.line})" if exc.line is not None else ""
+    uploaded = exc.path not in set(bundled_records().values())
+    fix = " (if the header is wrong, correct it and upload the file again)" if uploaded else ""
+    return (
+        f"units of the file: {exc.path.name} states its units as {exc.header_units!r}{line}, not {chosen}; "
+        f"choose \u201cfrom the file\u201d{fix}"
+    )
+
+
+def parse_scatter(form: Mapping[str, Any]) -> float | None:
+    """The relative scatter s of the pedestal's floor friction for the design sweep (each value also
+    runs at μs·(1 ± s)); None (the design's default) if the field is empty."""
+    problems: list[str] = []
+    s = _number(form, "sweep_scatter", "friction scatter", problems, required=False)
+    if s is not None and not 0 <= s < 1:
+        problems.append(f"friction scatter: must be >= 0 and < 1 (relative to μs), got {s:g}")
+    if problems:
+        raise FormError("; ".join(problems))
+    return s
+
+
 def _config_message(exc: ConfigError, hide: str | None) -> str:
     parts = []
     for fld, msg in exc.problems:
@@ -328,6 +434,8 @@ class _State:
             settings["MAX_WORKERS"], queue_timeout=float(settings["QUEUE_TIMEOUT"]), context=settings["MP_CONTEXT"]
         )
         self._lock = threading.Lock()
+        # one client may hold at most all workers but one: another user can always start a run
+        self.clients = _Clients(min(int(settings["MAX_JOBS_PER_CLIENT"]), max(1, self.runner.max_workers - 1)))
         self.records = sorted(bundled_records())
         self.forms: dict[str, dict[str, str]] = {}  # the inputs of each sweep, to go back to them
 
@@ -340,8 +448,15 @@ class _State:
 
     def _prune(self, kind: str) -> None:
         keep = int(self.settings["KEEP_RUNS"])
+        def age(path: Path) -> float | None:
+            try:
+                return path.stat().st_mtime
+            except FileNotFoundError:  # removed meanwhile by a request that was refused
+                return None
+
         with self._lock:
-            dirs = sorted((self.work_dir / kind).iterdir(), key=lambda p: p.stat().st_mtime)
+            stamped = [(t, p) for p in (self.work_dir / kind).iterdir() if (t := age(p)) is not None]
+            dirs = [p for _, p in sorted(stamped, key=lambda tp: tp[0])]
             for old in dirs[:-keep] if len(dirs) > keep else []:
                 job = self.runner.get(old.name)
                 if job is None or job.finished_flag:
@@ -400,6 +515,7 @@ def create_app(settings: Mapping[str, Any] | None = None) -> Flask:
             scale_kinds=_SCALE_KINDS,
             max_upload=_megabytes(int(cfg["MAX_UPLOAD"])),
             max_sweep_points=int(cfg["MAX_SWEEP_POINTS"]),
+            max_duration=f"{float(cfg['MAX_DURATION']):g}",
             timeout=f"{float(cfg['RUN_TIMEOUT']):g}",
             **kw,
         )
@@ -421,6 +537,31 @@ def create_app(settings: Mapping[str, Any] | None = None) -> Flask:
             origin = request.headers.get("Origin")
             if origin and origin != "null" and urlsplit(origin).netloc != request.host:
                 abort(403, description="cross-site form submissions are refused")
+
+    # ------------------------------------------------------------ one client's share of the workers
+    def claim_quota(folder: Path):
+        """Count this request's run or sweep against its client's quota (until the job ends);
+        None, or the 429 page if the client is at its limit (``folder`` is then removed).
+        Called after the form is validated: a mistake in it is shown whatever the quota."""
+        client = request.remote_addr or "unknown"
+        if not state.clients.claim(client):
+            shutil.rmtree(folder, ignore_errors=True)
+            limit = state.clients.limit
+            html, status = page(
+                429, form=request.form, error_title="Too many runs at once",
+                error=f"{client} already has {limit} run{'s' if limit > 1 else ''} or design sweep"
+                      f"{'s' if limit > 1 else ''} in progress, the most one address may have at once on this "
+                      "server; wait until one has finished, then try again",
+            )
+            return html, status, {"Retry-After": "10"}
+        g.quota_client = client
+        return None
+
+    @app.teardown_request
+    def _release_quota(exc):
+        client = g.pop("quota_client", None)  # a started sweep has taken it over
+        if client is not None:
+            state.clients.release(client)
 
     @app.errorhandler(RequestEntityTooLarge)
     def _too_large(exc):
@@ -460,10 +601,16 @@ def create_app(settings: Mapping[str, Any] | None = None) -> Flask:
                 raise RequestEntityTooLarge()
             record_path = str(path)
         config = parse_form(request.form, record_path)
-        if record_path is not None:
-            # the reader's own checks, with its message naming the file and the line
-            read_record(record_path, format=config["motion"].get("format"), units=config["motion"].get("units"))
-        load_config(config)  # every other problem, named by field, before a worker starts
+        # the worker refuses a longer series too (ResourceLimitError), should a record's time step be finer
+        config.setdefault("simulation", {})["max_samples"] = int(cfg["MAX_SAMPLES"])
+        motion = config["motion"]
+        if record_path is not None or motion.get("units"):
+            # the reader's own checks, with its message naming the file and the line; also a
+            # units choice that contradicts the header of a bundled record (the config's own
+            # message for that would point at a TOML key the page does not have)
+            read_record(record_path or motion["path"], format=motion.get("format"), units=motion.get("units"))
+        checked = load_config(config)  # every other problem, named by field, before a worker starts
+        check_limits(checked, float(cfg["MAX_DURATION"]), int(cfg["MAX_SAMPLES"]))
         return config, record_path
 
     def validated(kind: str):
@@ -474,6 +621,10 @@ def create_app(settings: Mapping[str, Any] | None = None) -> Flask:
             config, record_path = prepare(kind, folder)
         except BaseException as exc:
             shutil.rmtree(folder, ignore_errors=True)
+            if isinstance(exc, UnitsConflictError):
+                return None, ("Invalid input", _units_conflict_message(exc))
+            if isinstance(exc, LimitError):
+                return None, ("Over this server's limits", str(exc))
             if isinstance(exc, RecordError):
                 return None, ("Cannot read the record", _hide_path(" ".join(str(exc).split()), upload_dir))
             if isinstance(exc, ConfigError):
@@ -498,6 +649,9 @@ def create_app(settings: Mapping[str, Any] | None = None) -> Flask:
         if problem is not None:
             return page(400, form=request.form, error_title=problem[0], error=problem[1])
         run_id, folder, config, upload_dir = prepared
+        refused = claim_quota(folder)
+        if refused is not None:
+            return refused
         job = state.runner.run(
             tasks.run_task,
             {"config": config, "out_dir": str(folder), "animation": cfg["ANIMATION"], "dpi": int(cfg["FIGURE_DPI"])},
@@ -530,7 +684,7 @@ def create_app(settings: Mapping[str, Any] | None = None) -> Flask:
     @app.post("/sweep")
     def start_sweep():
         prepared, problem = validated("sweeps")
-        frictions, sliding_limit = None, None
+        frictions, sliding_limit, scatter = None, None, None
         if problem is None:
             try:
                 if "pedestal" not in prepared[2]:
@@ -539,22 +693,42 @@ def create_app(settings: Mapping[str, Any] | None = None) -> Flask:
                         "'the statue stands on a pedestal' and describe the pedestal"
                     )
                 frictions, sliding_limit = parse_sweep(request.form, int(cfg["MAX_SWEEP_POINTS"]))
+                scatter = parse_scatter(request.form)
             except FormError as exc:
                 problem = ("Invalid input", str(exc))
         if problem is not None:
+            if prepared is not None:
+                shutil.rmtree(prepared[1], ignore_errors=True)
             return page(400, form=request.form, error_title=problem[0], error=problem[1])
         job_id, folder, config, upload_dir = prepared
+        refused = claim_quota(folder)
+        if refused is not None:
+            return refused
         state.forms[job_id] = {k: _text(request.form, k) for k in _FORM_DEFAULTS if k in request.form}
         state.forms[job_id]["pedestal"] = "on"
-        state.runner.start(
-            tasks.sweep_task,
-            {"config": config, "frictions": frictions, "sliding_limit": sliding_limit, "out_dir": str(folder),
-             "dpi": int(cfg["FIGURE_DPI"])},
-            timeout=float(cfg["SWEEP_TIMEOUT"]),
-            kind="sweep",
-            job_id=job_id,
-            on_done=(lambda job: shutil.rmtree(upload_dir, ignore_errors=True)) if upload_dir else None,
-        )
+        client = g.pop("quota_client", None)  # the sweep holds its client's share until it ends
+
+        def finished(job) -> None:
+            if upload_dir:
+                shutil.rmtree(upload_dir, ignore_errors=True)
+            if client is not None:
+                state.clients.release(client)
+
+        try:
+            state.runner.start(
+                tasks.sweep_task,
+                {"config": config, "frictions": frictions, "sliding_limit": sliding_limit, "friction_scatter": scatter,
+                 "out_dir": str(folder),
+                 "dpi": int(cfg["FIGURE_DPI"])},
+                timeout=float(cfg["SWEEP_TIMEOUT"]),
+                kind="sweep",
+                job_id=job_id,
+                on_done=finished,
+            )
+        except BaseException:
+            if client is not None:
+                state.clients.release(client)
+            raise
         return redirect(url_for("show_sweep", job_id=job_id), code=303)
 
     def _job(job_id: str):

@@ -22,19 +22,33 @@ __all__ = ["LOOPBACK_NAMES", "is_loopback", "make_server", "serve", "settings_fr
 LOOPBACK_NAMES = ("localhost", "127.0.0.1", "::1")
 
 
-def settings_from(timeout: float = 120.0, sweep_timeout: float = 600.0, max_upload_mb: float = 5.0) -> dict[str, Any]:
+def settings_from(timeout: float = 120.0, sweep_timeout: float = 600.0, max_upload_mb: float = 5.0, *,
+                  max_duration: float = 600.0, max_jobs_per_client: int = 2) -> dict[str, Any]:
     """App settings (see :data:`rocking.web.app.DEFAULTS`) from the command-line options.
+
+    Parameters
+    ----------
+    timeout, sweep_timeout : float
+        Longest run and design sweep, s.
+    max_upload_mb : float
+        Largest uploaded record, MB.
+    max_duration : float
+        Longest simulated time of one run, s.
+    max_jobs_per_client : int
+        Runs and sweeps one client address may have in progress at once.
 
     Raises
     ------
     ValueError
         If a value is not positive; the message names the option.
     """
-    for name, value in (("--timeout", timeout), ("--sweep-timeout", sweep_timeout), ("--max-upload-mb", max_upload_mb)):
+    for name, value in (("--timeout", timeout), ("--sweep-timeout", sweep_timeout), ("--max-upload-mb", max_upload_mb),
+                        ("--max-duration", max_duration), ("--max-jobs-per-client", max_jobs_per_client)):
         if not value > 0:
             raise ValueError(f"{name} must be positive, got {value:g}")
     return {"RUN_TIMEOUT": float(timeout), "SWEEP_TIMEOUT": float(sweep_timeout),
-            "MAX_UPLOAD": int(max_upload_mb * 1024 * 1024)}
+            "MAX_UPLOAD": int(max_upload_mb * 1024 * 1024), "MAX_DURATION": float(max_duration),
+            "MAX_JOBS_PER_CLIENT": int(max_jobs_per_client)}
 
 
 def is_loopback(host: str) -> bool:
