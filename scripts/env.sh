@@ -1,5 +1,7 @@
 # Shared by demo.sh and test.sh: create .venv beside the repository and install the package
 # (with the optional dependency group named by the first argument, if any).
+# Always source it with an argument ("" for none): `source env.sh` alone hands it the
+# caller's own arguments, which are not extras.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"

@@ -144,7 +144,10 @@ def test_resolve_record_by_stem_name_and_path(tmp_path):
 
 
 def test_units_argument_overrides_header():
-    gm = read_record("Kobe1995_Takatori_000", units="cm/s2")
+    # units that contradict the header are refused unless asked for (tests/test_input_errors.py)
+    with pytest.raises(RecordError, match="the header states the units 'G', but units='cm/s2'"):
+        read_record("Kobe1995_Takatori_000", units="cm/s2")
+    gm = read_record("Kobe1995_Takatori_000", units="cm/s2", units_override=True)
     ref = read_record("Kobe1995_Takatori_000")
     np.testing.assert_allclose(gm.values, ref.values / G / 100, rtol=1e-15)
     assert gm.units == "cm/s2" and gm.meta["header_units"] == "G"

@@ -34,12 +34,24 @@ from rocking.constants import STANDARD_GRAVITY
 from rocking.excitation.record import GroundMotion
 
 __all__ = [
+    "MAX_RECORD_BYTES",
     "RecordError",
+    "UnitsConflictError",
     "bundled_records",
     "read_record",
+    "record_size_limit",
     "resolve_record",
     "units_to_si",
 ]
+
+#: Largest record file read by default, bytes (50 MB: about 3 million samples of text). Reading
+#: takes about ten times the file's size in memory while the text is parsed (measured: 45 MB
+#: file, 460 MB), so the limit keeps a mistaken file (a whole day of data, a binary) from
+#: exhausting a laptop. Raise it with ``max_bytes=`` or the environment variable
+#: ``ROCKING_MAX_RECORD_MB``.
+MAX_RECORD_BYTES = 50_000_000
+#: Environment variable that replaces :data:`MAX_RECORD_BYTES`, in MB (10⁶ bytes).
+RECORD_LIMIT_ENV = "ROCKING_MAX_RECORD_MB"
 
 _RECORDS_DIR = Path(__file__).resolve().parent.parent / "data" / "records"
 
@@ -90,13 +102,50 @@ class RecordError(ValueError):
         The file.
     line : int or None
         1-based line number of the problem, when there is one.
+    reason : str
+        The message without its ``<path>: line <n>:`` prefix.
     """
 
     def __init__(self, path: os.PathLike[str] | str, line: int | None, message: str):
         self.path = Path(path)
         self.line = line
+        self.reason = message
         where = f"{path}: line {line}" if line is not None else f"{path}"
         super().__init__(f"{where}: {message}")
+
+
+class UnitsConflictError(RecordError):
+    """``units`` given by the caller contradict the units the file's header states.
+
+    Raised unless ``units_override=True``: a header that says cm/s² read as g gives a
+    PGA 981 times too large, so neither may win silently.
+
+    Attributes
+    ----------
+    header_units : str
+        The units as the header spells them (e.g. ``"cm/s^2"``).
+    given_units : str
+        The units the caller gave (e.g. ``"g"``).
+    """
+
+    def __init__(
+        self,
+        path: os.PathLike[str] | str,
+        line: int | None,
+        header_units: str,
+        given_units: str,
+        way_out: str = (
+            "omit units to use the header's, or pass units_override=True if the header is wrong"
+        ),
+    ):
+        self.header_units = header_units
+        self.given_units = given_units
+        super().__init__(
+            path,
+            line,
+            f"the header states the units {header_units!r}, but units={given_units!r} was "
+            f"given; {way_out}",
+        )
 
 
 # --------------------------------------------------------------------------- units
@@ -285,6 +334,14 @@ def _parse_esm(lines: list[str], path: Path) -> dict[str, Any]:
             break
         fields[m.group(1)] = m.group(2).strip()
         where[m.group(1)] = idx + 1
+    if first_data == 0 and lines:
+        # not one "KEY: value" line: say what line 1 is rather than "lines 1-0"
+        raise RecordError(
+            path,
+            1,
+            f"not an ESM ASCII file: the header must start with 'KEY: value' lines "
+            f"(EVENT_NAME: ..., NDATA: ...), got {lines[0].strip()[:60]!r}",
+        )
     end = first_data + 1  # the first line after the header, for "missing field" errors
     missing = [k for k in ("NDATA", "SAMPLING_INTERVAL_S") if not fields.get(k)]
     if missing:
@@ -415,7 +472,12 @@ _PARSERS = {"peer": _parse_peer, "esm": _parse_esm, "two-column": _parse_two_col
 
 # ---------------------------------------------------------------------- public API
 def read_record(
-    path: os.PathLike[str] | str, *, format: str | None = None, units: str | None = None
+    path: os.PathLike[str] | str,
+    *,
+    format: str | None = None,
+    units: str | None = None,
+    units_override: bool = False,
+    max_bytes: int | None = None,
 ) -> GroundMotion:
     """Read an accelerogram file into a :class:`GroundMotion` (m/s²).
 
@@ -427,40 +489,68 @@ def read_record(
         File format (aliases: "at2", "itaca", "2col"); detected when omitted.
     units : str, optional
         Units of the stored values: g, cm/s2 (cm/s^2, cm/s², gal), m/s2 (m/s^2, m/s²)
-        or mm/s2, any case. Overrides the header; required when the file does not
-        state its units.
+        or mm/s2, any case. Required when the file does not state its units; when it
+        does, they must agree with the header's (same units, any spelling) unless
+        ``units_override`` is set.
+    units_override : bool
+        Use ``units`` even though the header states other units (for a file whose
+        header is known to be wrong). Needs ``units``.
+    max_bytes : int, optional
+        Largest file accepted, bytes; default :func:`record_size_limit` (50 MB, or
+        ``ROCKING_MAX_RECORD_MB``). A larger file is refused before it is read.
 
     Returns
     -------
     GroundMotion
         Time from 0 (s) for PEER and ESM files, the file's time column otherwise;
         values converted with g = 9.80665 m/s². ``units`` holds the stored units and
-        ``meta`` the header, the header ``dt`` (s) and point count.
+        ``meta`` the header, the header ``dt`` (s) and point count, ``header_units``
+        and ``units_override``.
 
     Raises
     ------
+    UnitsConflictError
+        ``units`` that contradict the header's, without ``units_override`` (a
+        :class:`RecordError`).
     RecordError
-        For any problem in the file; the message names the file and the line.
+        For any problem in the file, the message naming the file and the line; or a
+        file larger than ``max_bytes``, the message naming its size and the limit.
     ValueError
-        For an unknown ``format`` or ``units`` argument.
+        For an unknown ``format`` or ``units`` argument, or ``units_override``
+        without ``units``.
     """
+    if units_override and units is None:
+        raise ValueError("units_override=True needs units= (the units that replace the header's)")
     file = resolve_record(path)
+    _check_size(file, record_size_limit() if max_bytes is None else int(max_bytes))
     lines = _read_lines(file)
+    if not any(line.strip() for line in lines):
+        raise RecordError(file, None, "the file is empty")
     if format is None:
         fmt = _detect_format(lines, file)
+        parsed = _PARSERS[fmt](lines, file)
     else:
         fmt = _FORMATS.get(format.strip().lower())
         if fmt is None:
             known = sorted(set(_FORMATS.values()))
             raise ValueError(f"unknown record format {format!r}; use one of {known}")
-    parsed = _PARSERS[fmt](lines, file)
+        try:
+            parsed = _PARSERS[fmt](lines, file)
+        except RecordError as exc:
+            raise _with_format_hint(exc, fmt, lines, file) from None
 
+    header_units, units_line = parsed["units"], parsed["units_line"]
     if units is not None:
         factor = units_to_si(units, file)  # ValueError naming the value and the file
         stored = _canonical_units(units)
-    elif parsed["units"] is not None:
-        factor = units_to_si(parsed["units"], file, parsed["units_line"])
-        stored = _canonical_units(parsed["units"])
+        header = _canonical_units(header_units) if header_units is not None else None
+        # a header whose units are not recognised cannot be contradicted: the caller's
+        # units are then the only ones there are
+        if header is not None and header != stored and not units_override:
+            raise UnitsConflictError(file, units_line, header_units, units)
+    elif header_units is not None:
+        factor = units_to_si(header_units, file, units_line)
+        stored = _canonical_units(header_units)
     else:
         raise RecordError(
             file,
@@ -468,16 +558,89 @@ def read_record(
             "the file does not state its units; pass units='g' (or 'cm/s2', 'm/s2', 'mm/s2')",
         )
     meta = dict(parsed["meta"])
-    meta["header_units"] = parsed["units"]
+    meta["header_units"] = header_units
+    meta["units_override"] = bool(units_override and units is not None)
 
-    values = parsed["values"] * factor
-    time = parsed.get("time")
-    if time is None:
-        # i*dt in one multiplication: no accumulated round-off over long records
-        time = np.arange(values.size) * parsed["dt"]
-    return GroundMotion(
-        time=time, values=values, name=file.stem, source=str(file), units=stored, meta=meta
+    with np.errstate(over="ignore", invalid="ignore"):  # overflow is reported below
+        values = parsed["values"] * factor
+        time = parsed.get("time")
+        if time is None:
+            # i*dt in one multiplication: no accumulated round-off over long records
+            time = np.arange(values.size) * parsed["dt"]
+    bad = np.flatnonzero(~np.isfinite(values))
+    if bad.size:
+        raw = float(parsed["values"][bad[0]])
+        raise RecordError(
+            file, None, f"value #{bad[0] + 1} ({raw!r} {stored}) overflows when converted to m/s²"
+        )
+    if not np.all(np.isfinite(time)):
+        raise RecordError(file, None, f"the times overflow: {values.size} points at dt = {parsed['dt']!r} s")
+    try:
+        return GroundMotion(
+            time=time, values=values, name=file.stem, source=str(file), units=stored, meta=meta
+        )
+    except ValueError as exc:
+        # GroundMotion's own checks; the ones above should already have caught anything a
+        # file can hold, but whatever is left is still a problem of this file
+        raise RecordError(file, None, " ".join(str(exc).split())) from None
+
+
+_FORMAT_NAMES = {"peer": "a PEER AT2", "esm": "an ESM ASCII", "two-column": "a two-column text"}
+
+
+def _with_format_hint(exc: RecordError, forced: str, lines: list[str], file: Path) -> RecordError:
+    """``exc`` from the reader of a format the caller forced, plus what the file looks like
+    when that is another format (``info --format esm`` on an AT2 file)."""
+    try:
+        detected = _detect_format(lines, file)
+    except RecordError:
+        return exc
+    if detected == forced:
+        return exc
+    hint = (
+        f" (format {forced!r} was asked for, but the file looks like {_FORMAT_NAMES[detected]} "
+        "file: omit the format to detect it)"
     )
+    return RecordError(file, exc.line, exc.reason + hint)
+
+
+def record_size_limit() -> int:
+    """The largest record file :func:`read_record` reads, bytes: ``ROCKING_MAX_RECORD_MB`` (MB) if
+    set, else :data:`MAX_RECORD_BYTES`.
+
+    Raises
+    ------
+    ValueError
+        If the environment variable is not a positive number.
+    """
+    raw = os.environ.get(RECORD_LIMIT_ENV, "").strip()
+    if not raw:
+        return MAX_RECORD_BYTES
+    try:
+        mb = float(raw)
+    except ValueError:
+        mb = math.nan
+    if not (math.isfinite(mb) and mb > 0):
+        raise ValueError(f"{RECORD_LIMIT_ENV} must be a positive number of MB, got {raw!r}")
+    return int(mb * 1_000_000)
+
+
+def _check_size(file: Path, limit: int) -> None:
+    """Refuse a file over ``limit`` bytes before reading it (reading takes ~10× its size)."""
+    try:
+        size = file.stat().st_size
+    except OSError:
+        return  # the read that follows reports it
+    if size > limit:
+        mb = size / 1_000_000
+        memory = f"{10 * mb / 1000:.2g} GB" if 10 * mb >= 1000 else f"{10 * mb:.3g} MB"
+        raise RecordError(
+            file,
+            None,
+            f"the file is {mb:.3g} MB, over the {limit / 1_000_000:g} MB limit for a record (reading it would "
+            f"take about {memory} of memory); use a shorter or decimated record, or raise the limit with "
+            f"the environment variable {RECORD_LIMIT_ENV}={math.ceil(mb)} (max_bytes= in Python)",
+        )
 
 
 def bundled_records() -> dict[str, Path]:

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import math
 import os
-import shutil
 from pathlib import Path
 
 import numpy as np
@@ -24,7 +23,7 @@ from matplotlib.patches import Polygon, Rectangle
 from ..models.regimes import Regime
 from .plots import COLORS, REGIME_COLORS, REGIME_NAMES, floor_motion
 
-__all__ = ["animate", "frame_times"]
+__all__ = ["animate", "check_animation_path", "frame_times"]
 
 
 def frame_times(response, *, speed: float = 1.0, fps: float = 25, max_seconds: float | None = None) -> np.ndarray:
@@ -124,6 +123,42 @@ class _PalettePillowWriter:
         return Writer(fps=fps)
 
 
+def check_animation_path(path: str | os.PathLike[str]) -> str:
+    """Check that an animation can be written to ``path`` before anything is simulated.
+
+    Parameters
+    ----------
+    path : path-like
+        ``*.gif`` or ``*.mp4``.
+
+    Returns
+    -------
+    str
+        The extension, lower case (``".gif"`` or ``".mp4"``).
+
+    Raises
+    ------
+    ValueError
+        Another extension.
+    RuntimeError
+        ``.mp4`` and matplotlib finds no ffmpeg (on PATH, or at ``rcParams["animation.ffmpeg_path"]``).
+    """
+    path = Path(path)
+    ext = path.suffix.lower()
+    if ext not in (".gif", ".mp4"):
+        raise ValueError(f"animation file must end in .gif or .mp4, got {path.name!r}")
+    if ext == ".mp4":
+        from matplotlib.animation import writers
+
+        # the registry animate() writes through: it looks where matplotlib will look
+        if not writers.is_available("ffmpeg"):
+            raise RuntimeError(
+                f"cannot write {path.name}: MP4 needs ffmpeg, which matplotlib does not find "
+                "(on PATH, or at rcParams['animation.ffmpeg_path']); install ffmpeg or write a .gif instead"
+            )
+    return ext
+
+
 def animate(
     response,
     path: str | os.PathLike[str],
@@ -164,17 +199,10 @@ def animate(
     ValueError
         Unknown extension, or bad speed/fps/max_seconds.
     RuntimeError
-        ``.mp4`` without ffmpeg on PATH (write a ``.gif`` instead).
+        ``.mp4`` without ffmpeg (write a ``.gif`` instead); see :func:`check_animation_path`.
     """
     path = Path(path)
-    ext = path.suffix.lower()
-    if ext not in (".gif", ".mp4"):
-        raise ValueError(f"animation file must end in .gif or .mp4, got {path.name!r}")
-    if ext == ".mp4" and shutil.which("ffmpeg") is None:
-        raise RuntimeError(
-            f"cannot write {path.name}: MP4 needs ffmpeg on PATH, which was not found; "
-            "install ffmpeg or write a .gif instead"
-        )
+    ext = check_animation_path(path)
     times = frame_times(response, speed=speed, fps=fps, max_seconds=max_seconds)
     st = _state_at(response, times)
 
