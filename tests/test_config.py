@@ -123,7 +123,7 @@ def test_every_example_parses_into_specs(path):
     system, motion, options, duration = cfg.to_specs()
     assert isinstance(system, rk.System)
     assert isinstance(options, rk.Options)
-    assert duration > 0 and math.isfinite(duration)
+    assert duration is None or (duration > 0 and math.isfinite(duration))
     assert motion.pga > 0
     assert cfg.source == str(path)
 
@@ -147,7 +147,7 @@ def test_statue_alone_record_example_uses_the_bundled_record_scaled():
     assert isinstance(motion, GroundMotion) and motion.name == RINALDI
     raw = read_record(RINALDI)
     assert motion.pga != pytest.approx(raw.pga)  # scaled
-    assert duration == pytest.approx(raw.duration)  # default: the record's length
+    assert duration is None  # default: the record, then free motion until at rest
 
 
 def test_statue_on_pedestal_example_has_both_interfaces():
@@ -175,18 +175,20 @@ def test_defaults_follow_the_api():
     assert system.statue.friction is None  # never slides
     assert system.pedestal is None
     assert motion == rk.Harmonic(amplitude=3.0, frequency=1.5, cycles=2)
-    assert duration == pytest.approx(motion.duration)
+    assert duration is None  # the motion, then free motion until at rest (rk.simulate's default)
 
 
 def test_simulation_options_are_passed_through():
     d = _mutated(("simulation",), {
         "duration": 3.0, "gravity": 9.81, "normal_force": "paper", "impact": "paper", "rtol": 1e-8,
         "atol": 1e-10, "max_step": 0.01, "save_dt": 0.02, "rest_velocity": 1e-5, "max_events": 500,
+        "free_time_limit": 12.5, "max_samples": 1000,
     })
     _, _, options, duration = load_config(d).to_specs()
     assert duration == 3.0
     assert options == rk.Options(gravity=9.81, normal_force="paper", impact="paper", rtol=1e-8, atol=1e-10,
-                                 max_step=0.01, save_dt=0.02, rest_velocity=1e-5, max_events=500)
+                                 max_step=0.01, save_dt=0.02, rest_velocity=1e-5, max_events=500,
+                                 free_time_limit=12.5, max_samples=1000)
 
 
 def test_friction_without_kinetic_means_equal_coefficients():
@@ -210,7 +212,7 @@ def test_pulses(motion, cls, attrs):
     assert isinstance(m, cls)
     for k, v in attrs.items():
         assert getattr(m, k) == v
-    assert duration == pytest.approx(m.duration)
+    assert duration is None
 
 
 def test_harmonic_form_and_angular_frequency():
@@ -409,8 +411,11 @@ def test_record_with_units_and_format_overrides():
     d = _mutated(("motion",), {"kind": "record", "path": RINALDI, "units": "g", "format": "peer", "pga": 2.0})
     _, m, _, _ = load_config(d).to_specs()
     assert m.pga == 2.0 and m.meta["format"] == "peer"
-    # the units override wins over the header ("IN UNITS OF G")
-    _, m2, _, _ = load_config(_mutated(("motion",), {"kind": "record", "path": RINALDI, "units": "cm/s2"})).to_specs()
+    # units that contradict the header ("IN UNITS OF G") win only with units_override
+    with pytest.raises(ConfigError, match="motion.units: .* units_override = true"):
+        load_config(_mutated(("motion",), {"kind": "record", "path": RINALDI, "units": "cm/s2"}))
+    _, m2, _, _ = load_config(_mutated(("motion",), {"kind": "record", "path": RINALDI, "units": "cm/s2",
+                                                     "units_override": True})).to_specs()
     assert m2.pga == pytest.approx(read_record(RINALDI).pga / 9.80665 * 0.01)
 
 

@@ -15,6 +15,7 @@ from .models.parameters import pack
 from .results.response import Response
 from .solver.compiled import N_STATE, integrate
 from .solver.signals import deferred_signals
+from .solver.warmup import ensure_compiled
 
 
 DEFAULT_MAX_SAMPLES = 5_000_000  # saved samples a run may hold by default (about 200 MB)
@@ -146,7 +147,8 @@ def _check_memory(t_end: float, save_dt: float, save: bool, options: Options, du
             raise ResourceLimitError(
                 f"simulation.save_dt: {save_dt:.6g} s over {span} would store {n:.3g} samples "
                 f"({human_bytes(n * SAMPLE_BYTES)} in memory, more in output files), over simulation.max_samples "
-                f"= {limit:.3g}; raise save_dt, shorten simulation.duration, raise max_samples, or set save = false"
+                f"= {limit:.3g}; raise save_dt, shorten the run, or raise simulation.max_samples (--max-samples on the "
+                "command line; or simulate(..., save=False) for the summary alone)"
             )
     # The event table is reserved whole (max_events rows) whatever the series: it may take as
     # much memory as the default series would, or as the raised limit allows.
@@ -293,6 +295,7 @@ def simulate(
     True
     """
     options = _as_options(options)
+    ensure_compiled()  # a cold cache compiles for half a minute: say so (once per process)
     p, args = prepare(
         system, motion, duration=duration, options=options, initial_rotation=initial_rotation,
         initial_angular_velocity=initial_angular_velocity, initial_sliding_velocity=initial_sliding_velocity,

@@ -16,6 +16,8 @@ Fisher information (delta method).
 
 from __future__ import annotations
 
+import dataclasses
+
 import math
 import os
 from collections.abc import Callable, Mapping, Sequence
@@ -103,7 +105,7 @@ def ida(
     levels: Sequence[float],
     *,
     im: str = "pga",
-    free_time: float = 5.0,
+    free_time: float = 60.0,
     options: Options = Options(),
     workers: int | Any | None = None,
     folder: str | os.PathLike[str] | None = None,
@@ -123,7 +125,8 @@ def ida(
         The intensity measure the records are scaled to (PGV of the trapezoid-integrated,
         uncorrected record).
     free_time : float
-        Seconds simulated after the end of each record.
+        Longest free motion after the end of each record, s: each run goes on with the floor
+        still until everything is at rest or the statue falls, for at most this long.
     options, workers, folder, fresh, chunk_size, progress
         As in :func:`rocking.analyses.store.run_stored`.
 
@@ -132,6 +135,8 @@ def ida(
     xarray.Dataset
         Dimensions ``system``, ``record``, ``level``; every summary field of the runs plus
         ``exceed`` (θ/α reached 1, or fell) and ``fall`` (overturned), and ``scale_factor``.
+        A run still moving at the free-motion cap (``still_moving``) is not shown to survive:
+        it counts as a fall and an exceedance (conservative), and ``undetermined`` counts them.
     """
     from .batch import summaries_dataset
 
@@ -162,7 +167,8 @@ def ida(
     for i, (name, rec) in enumerate(records.items()):  # record outermost: a chunk ships 1-2 records
         for label, system in systems.items():
             for j in range(lv.size):
-                runs.append(Run(system, name, float(factors[i, j]), float(rec.duration) + float(free_time)))
+                runs.append(Run(system, name, float(factors[i, j])))  # the record, then free motion
+    options = dataclasses.replace(options, free_time_limit=float(free_time))
     meta = {"systems": list(systems), "records": list(records), "levels": lv.tolist(), "im": im}
     raw = run_stored(runs, records, options=options, study="fragility", folder=folder, fresh=fresh,
                      workers=workers, chunk_size=chunk_size, progress=progress, meta=meta)
@@ -173,8 +179,10 @@ def ida(
     ds = ds.assign_coords(system=list(systems), record=list(records), level=lv)
     ds["level"].attrs.update(units=IM_UNITS[im], long_name=im.upper())
     ds["scale_factor"] = (("record", "level"), factors)
-    ds["fall"] = ds["overturned"]
-    ds["exceed"] = ds["overturned"] | (ds["peak_rotation_over_alpha"] >= 1.0)
+    ds["fall"] = ds["overturned"] | ds["still_moving"]
+    ds["exceed"] = ds["fall"] | (ds["peak_rotation_over_alpha"] >= 1.0)
+    ds["undetermined"] = ds["still_moving"].sum(dim=("record", "level"))
+    ds["undetermined"].attrs["long_name"] = "runs still moving at the free-motion cap (counted as falls)"
     ds.attrs.update(study="ida", im=im, im_units=IM_UNITS[im], free_time=float(free_time),
                     gravity=float(options.gravity))
     return ds

@@ -18,8 +18,10 @@ The motions, for an amplitude a_p = A·g·tan α and a circular frequency ω_p =
 * ``"ricker"``: Ricker wavelet with peak a_p and f = ω_p/2π, centred at 1.5/f;
 * ``"harmonic"``: a_p·sin(ω_p t) (``form="sin"``) for ``cycles`` cycles.
 
-Every run lasts the motion's duration plus ``free_time``/p (25 by default: enough for a
-block that is still rocking after the pulse to fall or settle).
+Every run lasts the motion, then goes on with the floor still until the block is at rest or
+falls, for at most ``free_time``/p (25 by default: enough for a block that is still rocking
+after the pulse to fall or settle). A run still moving at that cap is undetermined: it counts
+as safe in the scan, and is counted in ``undetermined_runs``.
 
     >>> import rocking as rk
     >>> from rocking.analyses.spectra import overturning_spectrum
@@ -30,6 +32,7 @@ block that is still rocking after the pulse to fall or settle).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 from collections.abc import Callable, Sequence
@@ -109,7 +112,11 @@ class SpectrumTask:
     options: Options
 
 
-def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: float, counter: list[int]) -> bool:
+def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: float, counter: list[int],
+           options: Options) -> bool:
+    """Does the block fail under amplitude ratio ``A`` at β? ``counter`` counts the runs, the
+    solver failures and the undetermined (still moving) runs; ``options`` carry the free-motion
+    cap."""
     from .batch import run_raw
 
     if A <= 1.0:
@@ -117,12 +124,17 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
         # passes on at most μk·g < |a_g|), so there is nothing to simulate
         return task.criterion not in ("overturn", "no_impact", "exceed")
     motion = spectrum_motion(task.shape, A, beta, g_tan_alpha=g_tan_alpha, p=p, phase=task.phase, cycles=task.cycles)
-    raw = run_raw(task.system, motion, task.options, motion.duration + task.free_time / p)
+    raw = run_raw(task.system, motion, options)
     counter[0] += 1
     status = int(raw[C.S_STATUS])
+    if status == C.STATUS_INTERRUPTED:
+        # cut short by a signal: not a result, and never to be saved in a chunk (see store._run_runs)
+        raise KeyboardInterrupt("a run of the spectrum was interrupted")
     if status in (C.STATUS_SINGULAR, C.STATUS_STEP_FAILED):
         counter[1] += 1
         return False
+    if status == C.STATUS_STILL_MOVING:
+        counter[2] += 1
     if task.criterion == "exceed":
         return not math.isnan(raw[C.S_EXCEED_TIME])
     overturned = status == C.STATUS_OVERTURNED
@@ -148,6 +160,7 @@ def _spectrum_chunk(task: SpectrumTask) -> dict[str, np.ndarray]:
     g = task.options.gravity
     p = statue.frequency_parameter(g)
     g_tan_alpha = g * math.tan(statue.slenderness)
+    options = dataclasses.replace(task.options, free_time_limit=task.free_time / p)
     nf, ns = len(task.frequency_ratios), len(task.scan)
     out = {
         "lower": np.full(nf, np.nan),
@@ -162,12 +175,13 @@ def _spectrum_chunk(task: SpectrumTask) -> dict[str, np.ndarray]:
         "scan_fails": np.zeros((nf, ns), dtype=bool),
         "runs": np.zeros(nf, dtype=np.int64),
         "failed_runs": np.zeros(nf, dtype=np.int64),
+        "undetermined_runs": np.zeros(nf, dtype=np.int64),
     }
     for k, beta in enumerate(task.frequency_ratios):
-        counter = [0, 0]
+        counter = [0, 0, 0]
 
         def fails(A: float, beta: float = beta) -> bool:
-            return _fails(task, A, beta, g_tan_alpha, p, counter)
+            return _fails(task, A, beta, g_tan_alpha, p, counter, options)
 
         scan = np.array([fails(A) for A in task.scan], dtype=bool)
         out["scan_fails"][k] = scan
@@ -196,7 +210,7 @@ def _spectrum_chunk(task: SpectrumTask) -> dict[str, np.ndarray]:
                 out["island_upper"][k, n_isl] = 0.5 * (end[0] + end[1]) if end is not None else np.inf
             n_isl += 1
         out["n_islands"][k] = n_isl
-        out["runs"][k], out["failed_runs"][k] = counter
+        out["runs"][k], out["failed_runs"][k], out["undetermined_runs"][k] = counter
     return out
 
 
@@ -251,7 +265,8 @@ def overturning_spectrum(
     cycles : float
         Cycles of the harmonic motion.
     free_time : float
-        Extra simulated time after the motion, in units of 1/p.
+        Longest free motion after the motion ends, in units of 1/p: the run ends earlier when the
+        block is at rest or falls.
     options : Options
     workers : int, executor or Dask client
         As in :mod:`rocking.analyses.batch` (tasks are groups of frequencies).
@@ -273,8 +288,9 @@ def overturning_spectrum(
         the bottom of the range), ``island_lower``/``island_upper`` (safe islands above the
         boundary; ``inf`` = still safe at the top of the scan), ``n_islands``, every change of
         outcome found (``edge_lower``/``edge_upper`` brackets, ``edge_to_failure`` True where
-        the block fails above it), ``scan_fails`` (the coarse scan), ``runs`` and
-        ``failed_runs`` (solver failures, counted as safe).
+        the block fails above it), ``scan_fails`` (the coarse scan), ``runs``,
+        ``failed_runs`` (solver failures, counted as safe) and ``undetermined_runs`` (still
+        moving at the free-motion cap, counted as safe).
 
     Notes
     -----
@@ -343,6 +359,7 @@ def overturning_spectrum(
         "scan_fails": np.zeros((ns, nb, len(scan)), dtype=bool),
         "runs": np.zeros((ns, nb), dtype=np.int64),
         "failed_runs": np.zeros((ns, nb), dtype=np.int64),
+        "undetermined_runs": np.zeros((ns, nb), dtype=np.int64),
     }
     for (si, r), part in zip(index, parts):
         for key, arr in full.items():
@@ -369,6 +386,8 @@ def overturning_spectrum(
             "scan_fails": (dims + ("scan",), full["scan_fails"]),
             "runs": (dims, full["runs"]),
             "failed_runs": (dims, full["failed_runs"]),
+            "undetermined_runs": (dims, full["undetermined_runs"], {
+                "long_name": "runs still moving at the free-motion cap (counted as safe)"}),
         },
         coords={
             "pulse": np.array(shapes, dtype=str),

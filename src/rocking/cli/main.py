@@ -7,13 +7,16 @@ Commands::
     rocking info RECORD [--json]                   properties of one record
 
 Exit codes: 0 success; 2 bad input (invalid config, unreadable record, wrong
-arguments), reported as one ``error: ...`` line on stderr without a traceback and
-without any output file; 1 a failed simulation or an output that cannot be written;
-130 interrupted. Set ``ROCKING_DEBUG=1`` to see the traceback of an unexpected error.
+arguments) or a run over a resource limit (``simulation.max_samples``, the free space for
+``--out``, see ``docs/limits.md``), reported as one ``error: ...`` line on stderr without a
+traceback and without any output file; 1 a failed simulation or an output that cannot be
+written; 130 interrupted by Ctrl-C, 143 by SIGTERM (129 SIGHUP), with the temporary outputs
+removed. Set ``ROCKING_DEBUG=1`` to see the traceback of an unexpected error.
 """
 
 from __future__ import annotations
 
+import errno
 import json
 import os
 import sys
@@ -26,13 +29,17 @@ from typing import Annotated, Any
 import typer
 from rich.console import Console
 from typer._click import exceptions as click_exceptions  # typer vendors click
+from typer._click import utils as click_utils
 
 from .. import __version__
 from ..io.config import ConfigError, load_config
-from ..io.output import OUTPUT_FILES, summary_json, write_outputs
-from ..io.records import RecordError, bundled_records, read_record
+from ..io.output import OUTPUT_FILES, OutputSpaceError, check_output_space, summary_json, write_outputs
+from ..io.records import RecordError, UnitsConflictError, bundled_records, read_record
 from ..runner import run_response
-from ..simulation import SimulationError
+from ..simulation import ResourceLimitError, SimulationError
+from ..solver.warmup import ensure_compiled
+from .interrupts import exit_code, signal_name, stop_signals
+from .limits import MAX_FRAMES, MAX_SAMPLES_OPTION, ResourceRefused, preflight, with_max_samples
 from .progress import delayed_spinner
 from .render import g_units, record_info, record_table, summary_table
 
@@ -88,6 +95,10 @@ def _root(
 
 
 # ---------------------------------------------------------------------------- run
+#: Frames per second of ``run --animate``.
+ANIMATION_FPS = 25
+
+
 @app.command("run")
 def run_command(
     config: Annotated[Path, typer.Argument(metavar="CONFIG", help="TOML configuration file.", show_default=False)],
@@ -106,17 +117,22 @@ def run_command(
     animate: Annotated[
         bool, typer.Option("--animate", help="Also write animation.gif (needs --out).")
     ] = False,
+    max_samples: Annotated[int | None, MAX_SAMPLES_OPTION] = None,
 ) -> None:
     """Simulate CONFIG and print the summary (SI units, radians)."""
-    cfg = load_config(config)  # every input error surfaces here, before any output
+    cfg = with_max_samples(load_config(config), max_samples)  # every input error surfaces here
     if out is not None and out.exists() and not out.is_dir():
         raise InputError(f"--out: {out} exists and is not a directory")
     if animate and out is None:
         raise InputError("--animate needs --out DIR to write animation.gif into")
+    preflight(cfg, out=out)  # memory and disk limits, before the solver is compiled or run
+    ensure_compiled()  # says so on stderr when the first run on this machine must compile
     with delayed_spinner(f"simulating {config.name}", console=_stderr()):
         cfg, response = run_response(cfg)
     summary = response.summary()
     if out is not None:
+        # the exact count now (events add rows): still nothing written if it does not fit
+        check_output_space(len(response.t), out, hint="raise simulation.save_dt or shorten simulation.duration")
         with delayed_spinner(f"writing {out}", console=_stderr()):
             try:
                 write_outputs(response, out, config=cfg)
@@ -125,8 +141,14 @@ def run_command(
         if animate:
             from ..viz import animate as write_animation
 
+            # a long run plays faster, so that the GIF stays within MAX_FRAMES frames (memory)
+            span = float(response.t[-1] - response.t[0])
+            speed = max(1.0, ANIMATION_FPS * span / MAX_FRAMES)
+            if speed > 1.0:
+                _stderr().print(f"animation.gif plays {speed:.3g} times faster than real time (at most "
+                                f"{MAX_FRAMES} frames); `rocking animate --speed` chooses the speed", markup=False)
             with delayed_spinner("drawing the animation", console=_stderr()):
-                write_animation(response, out / "animation.gif")
+                write_animation(response, out / "animation.gif", speed=speed, fps=ANIMATION_FPS)
     if as_json:
         sys.stdout.write(summary_json(summary) + "\n")
         if out is not None:
@@ -177,13 +199,26 @@ def info_command(
         str | None,
         typer.Option("--units", help="Units of the stored values if the file lacks them (g, cm/s2, m/s2)."),
     ] = None,
+    units_override: Annotated[
+        bool,
+        typer.Option("--units-override", help="Use --units even where the file's header states other units."),
+    ] = False,
     as_json: Annotated[bool, typer.Option("--json", help="Print the properties as JSON.")] = False,
 ) -> None:
     """Show a record's format, dt, points, duration, PGA and PGV."""
+    if units_override and units is None:
+        raise InputError("--units-override needs --units (the units that replace the header's)")
     try:
-        motion = read_record(record, format=format, units=units)
+        motion = read_record(record, format=format, units=units, units_override=units_override)
     except FileNotFoundError as exc:
         raise InputError(str(exc).replace("\n", " ")) from None
+    except UnitsConflictError as exc:
+        # the reader's way out names the API argument; say it with the options of this command
+        where = f"{exc.path}: line {exc.line}" if exc.line is not None else str(exc.path)
+        raise InputError(
+            f"{where}: the header states the units {exc.header_units!r}, but --units says {exc.given_units!r}; "
+            "omit --units to use the header's, or add --units-override if the header is wrong"
+        ) from None
     info = _record_row(motion.name, motion)
     info.update(
         file=motion.source,
@@ -225,9 +260,47 @@ def _error(message: str) -> None:
     sys.stderr.flush()
 
 
+def _interrupted(exc: BaseException) -> int:
+    """Say how the command was stopped; return 128 + the signal's number (130 Ctrl-C, 143 SIGTERM).
+
+    A study's interrupt carries how many of its runs are saved
+    (:class:`rocking.analyses.store.StudyInterrupted`); a ``typer.Abort`` raised by a command
+    counts as Ctrl-C (or as its cause, if it has one).
+    """
+    cause = exc.__cause__ if isinstance(exc, typer.Abort) and exc.__cause__ is not None else exc
+    if hasattr(cause, "saved") and hasattr(cause, "total"):
+        text = str(cause)
+    elif signal_name(cause) == "Ctrl-C":
+        text = "interrupted"
+    else:
+        text = f"interrupted by {signal_name(cause)}"
+    sys.stderr.write(text + "\n")
+    sys.stderr.flush()
+    return exit_code(cause)
+
+
 @lru_cache(maxsize=1)
 def _command() -> Any:
     return typer.main.get_command(app)
+
+
+def _invoke(args: list[str]) -> Any:
+    """Parse ``args`` and run the command: what click's ``main(standalone_mode=False)`` does, except
+    that a ``KeyboardInterrupt`` propagates. Typer's ``main`` turns it into the bare exit code 130,
+    which would lose the signal (SIGTERM is 143) and what a study saved before it stopped."""
+    command = _command()
+    try:
+        with command.make_context("rocking", args) as ctx:
+            return command.invoke(ctx)
+    except typer.Exit as exc:  # --version, --help
+        return exc.exit_code
+    except OSError as exc:
+        if exc.errno != errno.EPIPE:
+            raise
+        # the reader of a pipe went away (`rocking records | head`): no error, as click does
+        sys.stdout = click_utils.PacifyFlushWrapper(sys.stdout)
+        sys.stderr = click_utils.PacifyFlushWrapper(sys.stderr)
+        return 1
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -241,11 +314,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     Returns
     -------
     int
-        0 success, 1 failed simulation or output, 2 bad input, 130 interrupted.
+        0 success, 1 failed simulation or output, 2 bad input or over a resource limit,
+        130 interrupted (Ctrl-C), 143 terminated (SIGTERM; 129 for SIGHUP).
     """
     args = list(argv) if argv is not None else sys.argv[1:]
     try:
-        rv = _command().main(args=args, prog_name="rocking", standalone_mode=False)
+        with stop_signals():  # SIGTERM/SIGHUP unwind like Ctrl-C: temporary outputs are removed
+            rv = _invoke(args)
     except click_exceptions.UsageError as exc:
         if type(exc).__name__ == "NoArgsIsHelpError":  # bare `rocking`: show the help
             sys.stderr.write(exc.format_message() + "\n")
@@ -256,9 +331,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     except click_exceptions.ClickException as exc:
         _error(exc.format_message())
         return exc.exit_code
-    except (typer.Abort, KeyboardInterrupt):
-        _error("interrupted")
-        return 130
+    except (typer.Abort, KeyboardInterrupt) as exc:
+        return _interrupted(exc)
+    except (ResourceLimitError, ResourceRefused, OutputSpaceError) as exc:  # over a limit: change the input
+        _error(str(exc))
+        return 2
     except (ConfigError, RecordError, InputError) as exc:
         _error(str(exc))
         return 2

@@ -50,6 +50,9 @@ def paper(
     out = Path(out)
     if out.exists() and not out.is_dir():
         raise typer.BadParameter(f"{out} exists and is not a directory", param_hint="--out")
+    from ..solver.warmup import ensure_compiled
+
+    ensure_compiled()  # before the progress bar: the message must not fight with it
     parent = out.resolve().parent
     parent.mkdir(parents=True, exist_ok=True)
     # A hidden sibling directory (same file system, so the final move is a rename), created with

@@ -22,7 +22,7 @@ from typing import Annotated, Any, Literal, Optional
 
 import numpy as np
 import typer
-from pydantic import BaseModel, Field, PrivateAttr, ValidationError, model_validator
+from pydantic import BaseModel, Field, PrivateAttr, ValidationError, field_validator, model_validator
 
 from ..io.config import (
     ConfigError,
@@ -78,6 +78,19 @@ def _grid(value: Grid) -> list[float]:
     return value.values() if isinstance(value, GridConfig) else [float(v) for v in value]
 
 
+def _checked_grid(value: Grid, ok: Any, bound: str) -> Grid:
+    """``value`` if it holds at least one value and every value satisfies ``ok``; else a
+    ValueError that the config error reports under the grid's own dotted field."""
+    values = _grid(value)
+    if not values:
+        raise ValueError("must hold at least one value")
+    bad = next((x for x in values if not ok(x)), None)
+    if bad is not None:
+        where = " (a value of the grid)" if isinstance(value, GridConfig) else ""
+        raise ValueError(f"every value must be {bound}, got {bad:g}{where}")
+    return value
+
+
 class MotionSetConfig(_Section):
     """``[motions]``: records scaled to one intensity, or a harmonic/pulse family."""
 
@@ -121,7 +134,20 @@ class DesignConfig(_Section):
     residual_limit: NonNegative | None = None  # m
     top_friction_limit: NonNegative | None = None
     objective: Literal["mean", "median", "max"] = "mean"
-    free_time: NonNegative = 5.0  # s
+    friction_scatter: Annotated[float, Field(ge=0, lt=1)] = 0.2  # relative: candidates also run at μs·(1 ± s)
+    free_time: NonNegative = 60.0  # s: longest free motion after each record (runs end at rest)
+
+    @field_validator("mu_s")
+    @classmethod
+    def _friction_values(cls, v: Grid) -> Grid:
+        # checked here, not by friction_design, so that the message names design.mu_s and the file
+        return _checked_grid(v, lambda x: x >= 0, ">= 0")
+
+    @field_validator("pedestal_mass")
+    @classmethod
+    def _mass_values(cls, v: Grid | None) -> Grid | None:
+        # > 0 as [pedestal] mass: a massless pedestal is the statue sliding on the floor
+        return None if v is None else _checked_grid(v, lambda x: x > 0, "> 0")
 
     @model_validator(mode="after")
     def _one_kinetic(self) -> DesignConfig:
@@ -142,7 +168,7 @@ class FragilityConfig(_Section):
     bootstrap: Annotated[int, Field(ge=10, le=100_000)] = 400
     confidence: Annotated[float, Field(gt=0, lt=1)] = 0.9
     seed: int = 0
-    free_time: NonNegative = 5.0  # s
+    free_time: NonNegative = 60.0  # s: longest free motion after each record (runs end at rest)
 
     @model_validator(mode="after")
     def _some_levels(self) -> FragilityConfig:
@@ -281,9 +307,10 @@ def load_study(kind: str, config: str | os.PathLike[str] | Mapping[str, Any]) ->
     except ValidationError as exc:
         raise ConfigError(_problems(model, exc.errors()), source) from None
     study._source = source
-    if study.simulation.duration is not None:
-        raise ConfigError([("simulation.duration", f"not used by `rocking {kind}`: each run lasts its motion plus "
-                            f"{kind}.free_time")], source)
+    for key in ("duration", "free_time_limit"):
+        if key in study.simulation.model_fields_set:
+            raise ConfigError([(f"simulation.{key}", f"not used by `rocking {kind}`: each run lasts its motion, then "
+                                f"free motion until at rest, for at most {kind}.free_time")], source)
     return study, base
 
 
@@ -352,8 +379,8 @@ def design_inputs(study: DesignStudy, base: Path) -> dict[str, Any]:
     return dict(system=system, motions=motions, mu_s=_grid(d.mu_s), mu_k=d.mu_k, mu_k_ratio=d.mu_k_ratio,
                 pedestal_mass=_grid(d.pedestal_mass) if d.pedestal_mass is not None else None,
                 sliding_limit=d.sliding_limit, residual_limit=d.residual_limit,
-                top_friction_limit=d.top_friction_limit, objective=d.objective, free_time=d.free_time,
-                options=options)
+                top_friction_limit=d.top_friction_limit, objective=d.objective,
+                friction_scatter=d.friction_scatter, free_time=d.free_time, options=options)
 
 
 def fragility_inputs(study: FragilityStudy, base: Path) -> dict[str, Any]:
@@ -424,7 +451,8 @@ def _executor(workers: int | None, scheduler: str | None) -> Iterator[Any]:
     try:
         from distributed import Client, LocalCluster
     except ImportError:
-        raise typer.BadParameter("needs dask.distributed: pip install 'dask[distributed]'",
+        # Dask is an optional extra: the local process pool needs none of it
+        raise typer.BadParameter("needs Dask, an optional extra: pip install 'rocking[dask]'",
                                  param_hint="--scheduler") from None
     from ..analyses.executors import DaskExecutor, default_workers
 
@@ -493,22 +521,50 @@ def _out_dir(out: Path | None, config: Path, kind: str) -> Path:
     return out  # created with its chunk folder, once the workers are ready
 
 
+def _replace(path: Path, tmp: Path, write: Any) -> None:
+    """``write(tmp)``, then rename ``tmp`` to ``path``; on any failure or interrupt (Ctrl-C,
+    SIGTERM) remove ``tmp``, so that neither a half-written file nor a temporary one stays."""
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+
+
 def _write_text(path: Path, text: str) -> None:
-    tmp = path.with_name(f".{path.name}.tmp")
-    tmp.write_text(text, encoding="utf-8")
-    os.replace(tmp, path)
+    _replace(path, path.with_name(f".{path.name}.tmp"), lambda tmp: tmp.write_text(text, encoding="utf-8"))
 
 
 def _write_netcdf(ds: Any, path: Path) -> None:
-    tmp = path.with_name(f".{path.name}.tmp")
-    ds.to_netcdf(tmp, engine="h5netcdf")
-    os.replace(tmp, path)
+    _replace(path, path.with_name(f".{path.name}.tmp"), lambda tmp: ds.to_netcdf(tmp, engine="h5netcdf"))
 
 
 def _write_figure(fig: Any, path: Path) -> None:
-    tmp = path.with_name(f".{path.name}.tmp.png")
-    fig.savefig(tmp, dpi=130)
-    os.replace(tmp, path)
+    _replace(path, path.with_name(f".{path.name}.tmp.png"), lambda tmp: fig.savefig(tmp, dpi=130))
+
+
+def _warm_up() -> None:
+    """Compile the solver here, once, with a message, if the cache is cold: the workers then
+    load it from disk instead of each compiling it in silence."""
+    from ..solver.warmup import ensure_compiled
+
+    ensure_compiled()
+
+
+@contextlib.contextmanager
+def _whole_study(runs_per_part: Mapping[str, int], part: str) -> Iterator[None]:
+    """Turn the interrupt of one part of a study (one intensity measure of a fragility study) into
+    the count of the whole study: the parts before ``part`` are saved, the later ones not begun."""
+    from ..analyses.store import StudyInterrupted
+
+    try:
+        yield
+    except StudyInterrupted as exc:
+        names = list(runs_per_part)
+        before = sum(runs_per_part[k] for k in names[: names.index(part)])
+        raise StudyInterrupted(before + exc.saved, sum(runs_per_part.values()), exc.folder,
+                               signum=exc.signum) from exc
 
 
 def _check_workers(workers: int | None) -> None:
@@ -542,10 +598,11 @@ def design(config: _CONFIG, out: _OUT = None, workers: _WORKERS = None, schedule
     study, base = load_study("design", config)
     inputs = design_inputs(study, base)  # type: ignore[arg-type]
     out = _out_dir(out, config, "design")
+    _warm_up()
     with _executor(workers, scheduler) as ex, _progress("design") as progress:
         ds = friction_design(**inputs, workers=ex, folder=out / "chunks", fresh=fresh, progress=progress)
-    candidate_table(ds).to_csv(out / ".design_table.csv.tmp", index=False)
-    os.replace(out / ".design_table.csv.tmp", out / "design_table.csv")
+    _replace(out / "design_table.csv", out / ".design_table.csv.tmp",
+             lambda tmp: candidate_table(ds).to_csv(tmp, index=False))
     _write_netcdf(ds, out / "design.nc")
     _write_figure(plot_design(ds), out / "design_chart.png")
     report = design_report(ds, title=f"Friction design: {config.name}")
@@ -569,13 +626,17 @@ def fragility(config: _CONFIG, out: _OUT = None, workers: _WORKERS = None, sched
     study, base = load_study("fragility", config)
     inputs = fragility_inputs(study, base)  # type: ignore[arg-type]
     out = _out_dir(out, config, "fragility")
+    _warm_up()
     lines = [f"# Fragility: {config.name}", "",
              f"{len(inputs['records'])} records; systems: {', '.join(inputs['systems'])}; "
              f"band: {inputs['band']} ({int(100 * inputs['confidence'])}%).", ""]
     written = []
+    # runs of each intensity measure: an interrupt reports the saved runs of the whole study
+    per_im = {im: len(inputs["systems"]) * len(inputs["records"]) * len(levels)
+              for im, levels in inputs["levels"].items()}
     with _executor(workers, scheduler) as ex:
         for im, levels in inputs["levels"].items():
-            with _progress(f"IDA {im.upper()}") as progress:
+            with _progress(f"IDA {im.upper()}") as progress, _whole_study(per_im, im):
                 runs = ida(inputs["systems"], inputs["records"], levels, im=im, free_time=inputs["free_time"],
                            options=inputs["options"], workers=ex, folder=out / f"chunks-{im}", fresh=fresh,
                            progress=progress)
@@ -585,8 +646,8 @@ def fragility(config: _CONFIG, out: _OUT = None, workers: _WORKERS = None, sched
             _write_netcdf(curves, out / f"fragility_{im}.nc")
             table = curves[["im_median", "beta", "se_ln_median", "se_beta", "im_median_lower", "im_median_upper",
                             "at_bound"]].to_dataframe().reset_index()
-            table.to_csv(out / f".fragility_{im}.csv.tmp", index=False)
-            os.replace(out / f".fragility_{im}.csv.tmp", out / f"fragility_{im}.csv")
+            _replace(out / f"fragility_{im}.csv", out / f".fragility_{im}.csv.tmp",
+                     lambda tmp, table=table: table.to_csv(tmp, index=False))
             written += [f"ida_{im}.nc", f"fragility_{im}.nc", f"fragility_{im}.csv"]
             unit = curves.attrs["im_units"]
             lines += [f"## {im.upper()} ({unit})", "", f"| system | failure | median {im.upper()} ({unit}) | "
@@ -602,6 +663,10 @@ def fragility(config: _CONFIG, out: _OUT = None, workers: _WORKERS = None, sched
                                  f"{beta:.3g} | {frac} |" if math.isfinite(beta) else
                                  f"| {label} | {text} | {fit} | {interval} | – | {frac} |")
             lines.append("")
+            undetermined = int(runs.undetermined.sum())
+            if undetermined:
+                lines += [f"**{undetermined} run(s) were still moving {inputs['free_time']:g} s after their record "
+                          "ended: undetermined, counted as falls.** Raise fragility.free_time to decide them.", ""]
             for mode in ("exceed", "fall"):
                 ax = plot_fragility_curves(curves, mode, title=f"{config.stem}: {im.upper()}")
                 name = f"fragility_{im}_{mode}.png"
@@ -630,6 +695,7 @@ def spectrum(config: _CONFIG, out: _OUT = None, workers: _WORKERS = None, schedu
     study, base = load_study("spectrum", config)
     inputs = spectrum_inputs(study, base)  # type: ignore[arg-type]
     out = _out_dir(out, config, "spectrum")
+    _warm_up()
     with _executor(workers, scheduler) as ex, _progress("spectrum (frequencies)") as progress:
         ds = overturning_spectrum(**inputs, workers=ex, folder=out / "chunks", fresh=fresh, progress=progress)
     _write_netcdf(ds, out / "spectrum.nc")
@@ -654,6 +720,11 @@ def spectrum(config: _CONFIG, out: _OUT = None, workers: _WORKERS = None, schedu
                          for v, n in zip(ds.amplitude_ratio.values[:, k], ds.n_islands.values[:, k]))
         console_lines.append(f"{beta:9.4g}  {vals}")
     console_lines.append("(* safe islands above the boundary: see spectrum.csv; NaN: no overturning in range)")
+    undetermined = int(ds.undetermined_runs.sum())
+    if undetermined:
+        console_lines.append(f"warning: {undetermined} of {int(ds.runs.sum())} runs were still moving at the free-motion "
+                             f"cap ({a['free_time']:g}/p after the motion): undetermined, counted as safe; raise "
+                             "spectrum.free_time")
     typer.echo("\n".join(console_lines))
     typer.echo(f"wrote {out}/spectrum.nc, spectrum.csv and spectrum.png", err=True)
 

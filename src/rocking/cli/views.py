@@ -5,10 +5,13 @@ from __future__ import annotations
 import os
 import shutil
 import tempfile
+import uuid
 from pathlib import Path
 from typing import Annotated
 
 import typer
+
+from .limits import MAX_FRAMES, MAX_SAMPLES_OPTION, check_frames, preflight, with_max_samples
 
 
 def register(app: typer.Typer) -> None:
@@ -18,13 +21,18 @@ def register(app: typer.Typer) -> None:
         out: Annotated[Path, typer.Option("--out", "-o", help="Folder for report.html and report.pdf.")] = Path(
             "report"
         ),
+        max_samples: Annotated[int | None, MAX_SAMPLES_OPTION] = None,
     ) -> None:
         """Simulate CONFIG and write a self-contained HTML report and its PDF."""
         from ..io.config import load_config
         from ..report import write_report
         from ..runner import run_response
+        from ..solver.warmup import ensure_compiled
 
-        cfg = load_config(config)
+        cfg = with_max_samples(load_config(config), max_samples)
+        _check_out_folder(out)  # before simulating: a run must not end in FileExistsError
+        preflight(cfg)  # the saved series within simulation.max_samples, before compiling
+        ensure_compiled()
         result = run_response(cfg)
         _write_atomically(out, lambda tmp: write_report(result, tmp))
         typer.echo(f"wrote {out / 'report.html'} and {out / 'report.pdf'}")
@@ -37,19 +45,42 @@ def register(app: typer.Typer) -> None:
         ),
         speed: Annotated[float, typer.Option(help="Playback speed: 1 = real time, 0.25 = four times slower.")] = 1.0,
         fps: Annotated[int, typer.Option(help="Frames per second.")] = 25,
+        max_frames: Annotated[int, typer.Option(
+            "--max-frames", min=1,
+            help="Most frames to draw (a GIF holds them all in memory, about 0.35 MB each); more is refused.",
+        )] = MAX_FRAMES,
+        max_samples: Annotated[int | None, MAX_SAMPLES_OPTION] = None,
     ) -> None:
         """Simulate CONFIG and draw the floor, pedestal and statue moving, to scale."""
         from ..io.config import load_config
         from ..runner import run_response
+        from ..solver.warmup import ensure_compiled
         from ..viz import animate
+        from ..viz.animation import check_animation_path
+        from .main import InputError
 
         if speed <= 0 or fps <= 0:
             raise ValueError(f"--speed and --fps must be positive, got {speed} and {fps}")
-        cfg = load_config(config)
+        cfg = with_max_samples(load_config(config), max_samples)
+        hint = "raise --speed to {speed} or more, lower --fps, or raise --max-frames"
+        # everything that would stop the writing, found before the simulation
+        if out.is_dir():
+            raise InputError(f"--out: {out} is a directory; give a file name such as {out / 'animation.gif'}")
+        _check_parent(out)
+        try:
+            check_animation_path(out)
+        except (ValueError, RuntimeError) as exc:
+            raise InputError(f"--out: {exc}") from None
+        preflight(cfg)  # the saved series within simulation.max_samples
+        if cfg.simulation.duration is not None:  # the run lasts this long (unless it falls): refuse now
+            check_frames(cfg.simulation.duration, speed=speed, fps=fps, max_frames=max_frames, hint=hint)
+        ensure_compiled()
         _, response = run_response(cfg)
+        check_frames(float(response.t[-1] - response.t[0]), speed=speed, fps=fps, max_frames=max_frames, hint=hint)
         out.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(suffix=out.suffix, dir=out.parent)
-        os.close(fd)
+        # a name, not mkstemp's 0600 file: the writer creates it with the user's umask, like any
+        # file they write; hidden, beside the target (the final move is a rename)
+        tmp = str(out.parent / f".{out.stem}-{uuid.uuid4().hex[:12]}.tmp{out.suffix}")
         try:
             animate(response, tmp, speed=speed, fps=fps)
             os.replace(tmp, out)
@@ -57,6 +88,26 @@ def register(app: typer.Typer) -> None:
             if os.path.exists(tmp):
                 os.unlink(tmp)
         typer.echo(f"wrote {out}")
+
+
+def _check_out_folder(out: Path) -> None:
+    """Refuse an --out folder that cannot be made (an existing file, or a file on its path)."""
+    from .main import InputError
+
+    if out.exists() and not out.is_dir():
+        raise InputError(f"--out: {out} exists and is not a directory")
+    _check_parent(out)
+
+
+def _check_parent(out: Path) -> None:
+    """Refuse an --out whose nearest existing ancestor is a file (``--out afile/report``)."""
+    from .main import InputError
+
+    p = out.parent
+    while not p.exists() and p != p.parent:
+        p = p.parent
+    if p.exists() and not p.is_dir():
+        raise InputError(f"--out: {p} is a file, so {out} cannot be created")
 
 
 def _write_atomically(out: Path, write) -> None:

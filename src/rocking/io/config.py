@@ -23,12 +23,14 @@ The file mirrors the API one table per object (SI units throughout)::
     form = "cos"              # or "sin"
 
     [simulation]              # optional
-    duration = 25.0           # s; default: the motion's duration
+    duration = 25.0           # s; default: the motion, then free motion until at rest
+    free_time_limit = 60.0    # s; cap of that free motion
     gravity = 9.81            # m/s²; default 9.80665
 
 ``kind = "record"`` takes ``path`` (a file, relative to the config file's folder, or
 the name of a bundled record), at most one of ``scale`` (factor) and ``pga`` (m/s²),
-and optionally ``units`` and ``format`` (see :func:`rocking.io.records.read_record`).
+and optionally ``units`` and ``format`` (see :func:`rocking.io.records.read_record`);
+``units`` that contradict the file's header are refused unless ``units_override = true``.
 ``kind = "pulse"`` takes ``shape`` ("sine", "cosine", "rectangle", "ricker"),
 ``amplitude`` (m/s²) and ``frequency`` (Hz) or, for a rectangle, ``width`` (s); a sine
 pulse also takes ``phase`` (rad) and a Ricker wavelet ``center`` (s).
@@ -70,7 +72,7 @@ from ..excitation.harmonic import Harmonic
 from ..excitation.pulses import CosinePulse, RectanglePulse, RickerPulse, SinePulse
 from ..models.bodies import Pedestal, Statue, System
 from ..simulation import Options
-from .records import RecordError, bundled_records, read_record, units_to_si
+from .records import RecordError, UnitsConflictError, bundled_records, read_record, units_to_si
 
 __all__ = ["Config", "ConfigError", "load_config"]
 
@@ -102,8 +104,9 @@ class ConfigError(ValueError):
         self.field = self.problems[0][0] if self.problems else None
         parts = [f"{f}: {m}" if f else m for f, m in self.problems]
         text = "; ".join(parts) if parts else "invalid configuration"
-        # one line, whatever the nested messages contain: the CLI prints it as is
-        text = " ".join(text.split("\n"))
+        # one line, whatever the nested messages contain: the CLI prints it as is (every
+        # line break Python knows: \r, \v, \x1c, \u2028... as well as \n)
+        text = " ".join(text.splitlines())
         super().__init__(f"{source}: {text}" if source else text)
 
     def __reduce__(self):
@@ -184,6 +187,9 @@ class RecordConfig(_Section):
     format: str | None = None
     vertical_path: Annotated[str, Field(min_length=1)] | None = None  # vertical component, same samples
     vertical_units: str | None = None
+    # units (and vertical_units) replace units the file's header states; without it a
+    # contradiction is an error (a cm/s² file read as g gives a PGA 981 times too large)
+    units_override: bool = False
 
     @field_validator("units", "vertical_units")
     @classmethod
@@ -201,6 +207,8 @@ class RecordConfig(_Section):
     def _one_scaling(self) -> RecordConfig:
         if self.scale is not None and self.pga is not None:
             raise ValueError("give scale or pga, not both")
+        if self.units_override and self.units is None and self.vertical_units is None:
+            raise ValueError("units_override = true needs units (the units that replace the header's)")
         return self
 
 
@@ -274,9 +282,13 @@ MotionConfig = Annotated[
 
 
 class SimulationConfig(_Section):
-    """``[simulation]``: duration (s) and :class:`rocking.Options` fields."""
+    """``[simulation]``: duration (s) and :class:`rocking.Options` fields. Without ``duration``
+    a run lasts the motion plus free motion until everything is at rest (at most
+    ``free_time_limit`` s)."""
 
     duration: Positive | None = None
+    free_time_limit: NonNegative = _DEFAULTS.free_time_limit
+    max_samples: Annotated[int, Field(ge=1)] = _DEFAULTS.max_samples
     gravity: Positive = _DEFAULTS.gravity
     normal_force: Literal["full", "paper"] = _DEFAULTS.normal_force  # type: ignore[assignment]
     impact: Literal["coulomb", "paper"] = _DEFAULTS.impact  # type: ignore[assignment]
@@ -336,8 +348,9 @@ class Config(_Section):
         motion : rocking motion
             Harmonic, a pulse, or a :class:`~rocking.excitation.record.GroundMotion`.
         options : rocking.Options
-        duration : float
-            Simulated time, s (``simulation.duration`` or the motion's duration).
+        duration : float or None
+            ``simulation.duration`` (s), or None: the motion, then free motion until everything
+            is at rest (see :func:`rocking.simulate`).
 
         Raises
         ------
@@ -379,9 +392,10 @@ class Config(_Section):
                 rest_velocity=sim.rest_velocity,
                 save_dt=sim.save_dt,
                 max_events=sim.max_events,
+                free_time_limit=sim.free_time_limit,
+                max_samples=sim.max_samples,
             )
-        duration = sim.duration if sim.duration is not None else float(motion.duration)
-        return system, motion, options, duration
+        return system, motion, options, sim.duration
 
     def _motion_spec(self) -> Any:
         m, src = self.motion, self._source
@@ -410,7 +424,10 @@ class Config(_Section):
         src = self._source
         file = self.record_file()
         try:
-            record = read_record(file, format=m.format, units=m.units)
+            record = read_record(file, format=m.format, units=m.units,
+                                 units_override=m.units_override and m.units is not None)
+        except UnitsConflictError as exc:
+            raise ConfigError([("motion.units", _units_conflict(exc, "units"))], src) from None
         except RecordError as exc:
             # the reader's own text ("<file>: line <n>: ...") is what the user needs
             raise ConfigError([("motion.path", str(exc))], src) from None
@@ -434,7 +451,10 @@ class Config(_Section):
         src = self._source
         file = _resolve_record_path(m.vertical_path, self.base_dir, src)
         try:
-            vertical = read_record(file, format=m.format, units=m.vertical_units)
+            vertical = read_record(file, format=m.format, units=m.vertical_units,
+                                   units_override=m.units_override and m.vertical_units is not None)
+        except UnitsConflictError as exc:
+            raise ConfigError([("motion.vertical_units", _units_conflict(exc, "vertical_units"))], src) from None
         except RecordError as exc:
             raise ConfigError([("motion.vertical_path", str(exc))], src) from None
         except OSError as exc:
@@ -448,6 +468,15 @@ class Config(_Section):
             )
         return GroundMotion(time=record.time, values=record.values, vertical=vertical.values, name=record.name,
                             source=record.source, units=record.units, meta=dict(record.meta))
+
+
+def _units_conflict(exc: UnitsConflictError, key: str) -> str:
+    """The reader's units contradiction in the words of the config file."""
+    where = f"{exc.path}: line {exc.line}" if exc.line is not None else str(exc.path)
+    return (
+        f"{where}: the header states the units {exc.header_units!r}, but {key} = {exc.given_units!r}; "
+        f"remove {key} to use the header's, or set units_override = true in [motion] if the header is wrong"
+    )
 
 
 # ----------------------------------------------------------------------------- loading
@@ -574,7 +603,8 @@ def _loc_to_field(loc: tuple[Any, ...]) -> str:
     parts = list(loc)
     if len(parts) > 1 and parts[0] == "motion" and parts[1] in _MOTION_MODELS:
         del parts[1]
-    return ".".join(str(p) for p in parts)
+    # a key with control characters ("\r") is shown quoted, or it would be invisible
+    return ".".join(str(p) if str(p) and str(p).isprintable() else repr(str(p)) for p in parts)
 
 
 def _model_at(loc: tuple[Any, ...]) -> type[BaseModel] | None:
@@ -619,6 +649,7 @@ _TYPE_WORDS = {
     "model_type": "a table",
     "model_attributes_type": "a table",
     "dict_type": "a table",
+    "list_type": "an array",
 }
 
 

@@ -13,6 +13,7 @@ ends, the original handlers are back and the signal is delivered to them: SIGINT
 terminates the process as it would have).
 
 Outside the main thread nothing is replaced: Python delivers signals to the main thread only.
+Nor is a signal that is ignored (a background job of a shell script, ``nohup``): it stays ignored.
 """
 
 from __future__ import annotations
@@ -46,6 +47,8 @@ def deferred_signals() -> Iterator[np.ndarray]:
     previous = {}
     try:
         for sig in _SIGNALS:
+            if signal.getsignal(sig) == signal.SIG_IGN:
+                continue  # ignored on purpose (a background job, nohup): it must stay ignored
             previous[sig] = signal.signal(sig, record)
         yield flag
     finally:
