@@ -242,3 +242,36 @@ def test_a_signal_during_a_compiled_run_stops_it_cleanly(signum, tmp_path):
         assert proc.returncode == -signal.SIGTERM, err
     assert "Segmentation fault" not in err and "Fatal Python error" not in err
     assert latency < 5.0  # the solver polls every few thousand steps: milliseconds, with a wide margin
+
+
+def test_an_ignored_sigint_stays_ignored(tmp_path):
+    """A background job of a shell script (or nohup) ignores Ctrl-C: the solver must not stop."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    script = tmp_path / "ignored.py"
+    script.write_text(
+        "import signal\n"
+        "import rocking as rk\n"
+        "signal.signal(signal.SIGINT, signal.SIG_IGN)\n"
+        "system = rk.System(statue=rk.Statue(width=1.0, height=4.0, mass=1.0),\n"
+        "                   pedestal=rk.Pedestal(mass=1.0, friction=rk.Friction(static=0.1, kinetic=0.08)))\n"
+        "floor = rk.Harmonic(amplitude=2.0, frequency=1.2, cycles=1e8)\n"
+        "rk.simulate(system, floor, duration=0.5, save=False)\n"
+        "print('busy', flush=True)\n"
+        "r = rk.simulate(system, floor, duration=1e8, save=False, options=rk.Options(max_events=150_000))\n"
+        "print(r.status, flush=True)\n",
+        encoding="utf-8",
+    )
+    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout.readline().strip() == "busy"
+        time.sleep(0.3)
+        proc.send_signal(signal.SIGINT)
+        out, err = proc.communicate(timeout=60)
+    finally:
+        proc.kill()
+    assert proc.returncode == 0, err
+    assert out.strip() == "max_events"  # ran to its own end, not "interrupted"
