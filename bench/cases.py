@@ -44,13 +44,16 @@ def paper_motion(amplitude: float = PAPER_AMPLITUDE, frequency: float = PAPER_FR
 
 def cases() -> list[Case]:
     record = read_record(RECORD).trimmed(RECORD_LENGTH)
+    window = paper_motion().duration
+    # (a)-(c) keep the fixed windows of issue 4 (the motion's length), so that their figures
+    # compare across sessions; (d) runs as users do, on until rest after the motion.
     return [
         Case("a", "single block H=4 B=1 r=0.8, 30 cycles 6.75 cos(2π·1.2t)", rk.System(statue=STATUE),
-             paper_motion()),
+             paper_motion(), window),
         Case("b", "statue on pedestal m1=m2=1, μs=0.4 μk=0.3, same motion",
-             rk.System(statue=STATUE, pedestal=PEDESTAL), paper_motion()),
+             rk.System(statue=STATUE, pedestal=PEDESTAL), paper_motion(), window),
         Case("c", f"0.3×1.2 m block, {RECORD} first {RECORD_LENGTH:g} s (dt={record.dt:g} s)",
-             rk.System(statue=rk.Statue(width=0.3, height=1.2, mass=1.0)), record),
+             rk.System(statue=rk.Statue(width=0.3, height=1.2, mass=1.0)), record, record.duration),
     ]
 
 

@@ -286,6 +286,20 @@ def test_oversized_upload_is_refused(server, browser, tmp_path):
     assert "the upload is larger than the limit of 5 MB" in wait_for(browser, "#error").text
 
 
+def test_a_run_cut_short_says_undetermined(server, browser):
+    """A duration that ends while the record still shakes the statue: the page must not say that
+    the statue does not overturn (issue 10 §1)."""
+    from selenium.webdriver.common.by import By
+
+    browser.get(server + "/")
+    choose_record(browser, RECORD)
+    fill(browser, {**INPUTS, "duration": "3"})
+    browser.find_element(By.ID, "run").click()
+    shown = wait_for(browser, "#verdict").text
+    assert shown.startswith("Undetermined: "), shown
+    assert "does not overturn" not in shown
+
+
 def test_design_sweep_progress_and_report(server, browser):
     from selenium.webdriver.common.by import By
 

@@ -172,6 +172,15 @@ def test_report_out_that_is_a_file(capsys, short_toml, tmp_path, no_simulation):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["afile", "short.toml"]  # no temporary folder
 
 
+def test_run_out_below_a_file(capsys, short_toml, tmp_path, no_simulation):
+    taken = tmp_path / "afile"
+    taken.write_text("keep me")
+    code, out, err = _run_cli(capsys, "run", short_toml, "--out", taken / "sub")
+    assert code == 2 and out == ""
+    _one_error_line(err, f"--out: {taken} is a file")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["afile", "short.toml"]
+
+
 def test_animate_mp4_without_ffmpeg(capsys, short_toml, tmp_path, monkeypatch, no_simulation):
     # where matplotlib looks for ffmpeg: a path that does not exist stands for "not installed"
     monkeypatch.setitem(matplotlib.rcParams, "animation.ffmpeg_path", str(tmp_path / "no-ffmpeg"))

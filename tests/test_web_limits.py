@@ -27,19 +27,8 @@ from rocking.web import tasks  # noqa: E402
 from rocking.web.app import create_app  # noqa: E402
 from rocking.web.server import make_server  # noqa: E402
 
-RECORD = "Northridge1994_RinaldiReceivingSta_228"  # 19.9 s at dt = 0.01 s
-FORM = {
-    "record": RECORD,
-    "scale_kind": "factor",
-    "scale_value": "0.4",
-    "statue_width": "0.3",
-    "statue_height": "1.2",
-    "statue_mass": "100",
-    "statue_restitution": "0.85",
-    "statue_mu_s": "0.5",
-    "statue_mu_k": "0.4",
-}
-PEDESTAL = {"pedestal": "on", "pedestal_mass": "50", "pedestal_mu_s": "0.3", "pedestal_mu_k": "0.22"}
+from test_web import FORM, PEDESTAL, RECORD  # noqa: E402  (the statue of examples/statue_alone_record.toml)
+
 FAST = {"ANIMATION": {"fps": 4, "longest_video": 4.0, "dpi": 40}, "FIGURE_DPI": 40}
 
 

@@ -123,6 +123,10 @@ def run_command(
     cfg = with_max_samples(load_config(config), max_samples)  # every input error surfaces here
     if out is not None and out.exists() and not out.is_dir():
         raise InputError(f"--out: {out} exists and is not a directory")
+    if out is not None:
+        from .views import _check_parent
+
+        _check_parent(out)  # `--out afile/sub`: refused now, not after the run
     if animate and out is None:
         raise InputError("--animate needs --out DIR to write animation.gif into")
     preflight(cfg, out=out)  # memory and disk limits, before the solver is compiled or run
