@@ -57,6 +57,7 @@ progress { width: 100%; height: 1.3em; }
 .muted { color: #667; font-size: 0.85em; }
 a.download { display: inline-block; margin: 0.3em 0.8em 0.3em 0; }
 tr.best td { font-weight: 600; background: #e7f4ea; }
+.scroll { max-width: 100%; overflow-x: auto; }  /* a wide table scrolls inside its card on a phone */
 """
 
 _BASE = (
@@ -314,7 +315,7 @@ _SWEEP = """{% extends "base.html" %}
       </p>
       <div class="figures">
         <figure><img id="sweep-plot" alt="peak rotation and sliding against the pedestal's friction" src="{{ url_for('sweep_file', job_id=job.id, name='sweep.png') }}"></figure>
-        <table id="sweep-table">
+        <div class="scroll"><table id="sweep-table">
           <tr><th>μs</th><th>μk</th><th>overturns at μs</th><th>peak θ/α</th><th>peak sliding</th><th>impacts</th>
             <th>within μs·(1 ± s)</th><th>free space needed</th><th>limits</th></tr>
           {% for row in r.rows %}
@@ -327,7 +328,7 @@ _SWEEP = """{% extends "base.html" %}
             <td>{{ "%.1f"|format(1000 * row.clearance) }} mm</td><td>{% if row.meets_limits %}met{% else %}missed{% endif %}</td>
           </tr>
           {% endfor %}
-        </table>
+        </table></div>
       </div>
     {% endif %}
   </div>
