@@ -275,3 +275,40 @@ def test_an_ignored_sigint_stays_ignored(tmp_path):
         proc.kill()
     assert proc.returncode == 0, err
     assert out.strip() == "max_events"  # ran to its own end, not "interrupted"
+
+
+# ----------------------------------------------------------------------- studies: the same rule
+def _abrupt_record(amplitude: float) -> "rk.GroundMotion":
+    """A 1.25-cycle sine sampled at 5 ms that stops at its crest: the statue is still rocking
+    when the record ends."""
+    from rocking.excitation.record import GroundMotion
+
+    t = np.arange(0.0, 1.25 + 1e-9, 0.005)
+    return GroundMotion(time=t, values=amplitude * np.sin(2 * np.pi * t), name="abrupt")
+
+
+def test_fragility_counts_a_run_still_moving_at_the_cap_as_a_fall():
+    from rocking.analyses.fragility import ida
+
+    statue = block(0.25, 1.0, restitution=0.8)  # g·tan α = 2.45 m/s²
+    record = _abrupt_record(1.0)
+    levels = [2.8, 3.0]  # PGA, m/s²: rocks, does not fall
+    settled = ida({"statue": alone(statue)}, {"abrupt": record}, levels, options=OPTS, workers=1)
+    assert not settled.still_moving.any() and not settled.fall.any()
+    assert int(settled.undetermined.sum()) == 0
+    cut = ida({"statue": alone(statue)}, {"abrupt": record}, levels, free_time=0.0, options=OPTS, workers=1)
+    assert cut.still_moving.all()  # rocking when the record ends, and no free time to settle
+    assert cut.fall.all() and not cut.overturned.any()  # not shown to survive: counted as falls
+    assert int(cut.undetermined.sum()) == len(levels)
+
+
+def test_spectrum_counts_runs_still_moving_at_the_cap():
+    from rocking.analyses.spectra import overturning_spectrum
+
+    statue = rk.Statue(width=0.3, height=1.5, mass=1.0)
+    kw = dict(frequency_ratios=[2.0], amplitude_range=(1.5, 3.0), n_scan=3, rtol=0.05, options=OPTS, workers=1)
+    full = overturning_spectrum(rk.System(statue=statue), "sine", **kw)
+    cut = overturning_spectrum(rk.System(statue=statue), "sine", free_time=0.0, **kw)
+    assert int(full.undetermined_runs.sum()) == 0
+    assert int(cut.undetermined_runs.sum()) > 0
+    assert int(cut.undetermined_runs.sum()) <= int(cut.runs.sum())
