@@ -203,6 +203,23 @@ def test_ensure_compiled_says_what_it_does_and_how_long_it_took(cold):
     assert cold == [1]
 
 
+def test_a_cold_start_compiles_without_deadlocking(monkeypatch):
+    """The real compilation runs a simulation, and ``simulate`` calls ensure_compiled again from
+    inside it: with a non-re-entrant lock the first run on a fresh machine hung for ever."""
+    import threading
+
+    warmup._compile()  # compiled (or loaded) first, so that the timeout below measures a hang only
+    monkeypatch.setattr(warmup, "_done", False)
+    monkeypatch.setattr(warmup, "cache_is_warm", lambda: False)
+    result = []
+    worker = threading.Thread(target=lambda: result.append(warmup.ensure_compiled(stream=io.StringIO())),
+                              daemon=True)
+    worker.start()
+    worker.join(timeout=60)  # one tiny simulation of an already compiled solver: well under a second
+    assert not worker.is_alive(), "ensure_compiled deadlocked on a cold cache"
+    assert len(result) == 1 and result[0] is not None
+
+
 def test_ensure_compiled_is_silent_when_warm(monkeypatch):
     monkeypatch.setattr(warmup, "_done", False)
     monkeypatch.setattr(warmup, "cache_is_warm", lambda: True)

@@ -20,7 +20,9 @@ __all__ = ["cache_is_warm", "ensure_compiled"]
 #: What a cold start costs on a typical 2-core machine, s (for the message only).
 TYPICAL_SECONDS = 30
 
-_lock = threading.Lock()
+# Re-entrant: compiling runs a simulation, and ``simulate`` itself calls ensure_compiled (which
+# then returns at once, _done being set); a plain Lock would deadlock the first run.
+_lock = threading.RLock()
 _done = False
 
 
