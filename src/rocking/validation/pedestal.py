@@ -1,0 +1,80 @@
+"""The statue-on-pedestal model reduced to the validated single-block cases, and the stacks that
+cannot be checked yet."""
+
+from __future__ import annotations
+
+import rocking as rk
+from rocking.analyses.spectra import overturning_spectrum
+
+from . import exact as ex
+from . import lib
+from .rows import Row, Section
+
+
+def reduction_rows(quick: bool) -> list[Row]:
+    blk = ex.Block(0.25, 1.0)
+    rows = []
+    # 1. a pedestal the floor holds (μ = 10): the statue is Housner's block of section 2
+    held = rk.System(statue=lib.statue(blk), pedestal=rk.Pedestal(mass=1.0, friction=rk.Friction(static=10.0)))
+    betas = [2.0] if quick else [2.0, 4.0]
+    kw = dict(criterion="overturn", rtol=1e-7, n_scan=60, amplitude_range=(1.01, 30.0), options=lib.OPTIONS,
+              workers=1)
+    on_pedestal = overturning_spectrum(held, ["sine"], betas, **kw).amplitude_ratio.values.ravel()
+    single = overturning_spectrum(lib.alone(blk), ["sine"], betas, **kw).amplitude_ratio.values.ravel()
+    for i, (a, b) in enumerate(zip(on_pedestal, single), 1):
+        rows.append(Row(f"P1.{i}", "this model, limit μ → ∞",
+                        f"statue B = 0.5 m, H = 2 m on a pedestal held by friction μ = 10: smallest overturning "
+                        f"one-sine a_p/(g·tan α) at β = {betas[i - 1]:g} (published = the single block's, §2)",
+                        "exact", published=float(b), ours=float(a), tol=2e-7,
+                        note="the pedestal never slides: the statue must be the Housner block"))
+    # 2. a statue too squat to rock on a sliding pedestal: Newmark's block of mass m1 + m2
+    squat = rk.Statue(width=2.0, height=1.0, mass=3.0)  # tan α = 1 > μ: it never rocks (O17)
+    for i, (A, N, t0) in enumerate([(0.5, 0.2, 0.5)] if quick else [(0.5, 0.2, 0.5), (1.0, 0.1, 0.2)], 1):
+        system = rk.System(statue=squat, pedestal=rk.Pedestal(mass=2.0, friction=rk.Friction(static=N, kinetic=N)))
+        r = lib.simulate(system, rk.RectanglePulse(amplitude=A * ex.G, width=t0), save=False)
+        rows.append(Row(f"P2.{i}", "Newmark 1965, through this model",
+                        f"squat statue (tan α = 1) on a pedestal sliding on μ = {N:g}: pulse {A:g}g for {t0:g} s",
+                        "exact", published=ex.newmark_rectangle(A, N, t0), ours=abs(r.summary()["residual_sliding"]),
+                        unit="m", tol=1e-8))
+    # 3. μs ≤ tan α: a sliding pedestal passes on at most μk·g < g·tan α, the statue never rocks
+    slender = rk.System(statue=lib.statue(blk), pedestal=rk.Pedestal(mass=1.0, friction=rk.Friction(static=0.2)))
+    peaks = [lib.simulate(slender, lib.sine_pulse(blk, A, beta), save=False).peak_rotation
+             for A in (2.0, 10.0) for beta in (0.5, 2.0, 8.0)]
+    rows.append(Row("P3.1", "Shenton 1996, through this model",
+                    "statue B = 0.5 m, H = 2 m (tan α = 0.25) on a pedestal with μ = 0.2: largest |θ| (rad) "
+                    "over one-sine pulses A = 2, 10 × β = 0.5, 2, 8", "exact", published=0.0, ours=max(peaks),
+                    unit="rad", tol=0.0, note="slide before rock: the statue never rocks"))
+    return rows
+
+
+def pending_rows() -> list[Row]:
+    note = "needs the general stack engine (issue 11)"
+    return [
+        Row("ST1.1", "Psycharis 1990", "two-block stack, both blocks centred: uplift of the whole stack at "
+                                       "a_g = g·b1/h_c (h_c: height of the combined centre of mass)",
+            "pending", note=note),
+        Row("ST1.2", "Psycharis 1990", "two-block stack: uplift of the top block alone at a_g = g·b2/h2; the "
+                                       "smaller threshold starts the motion", "pending", note=note),
+        Row("ST1.3", "Makris & Vassiliou 2013",
+            "rocking frame (columns and a free cap beam): p̂ = p·√((1+2γ)/(1+3γ)), "
+            "η̂ = (1 − 1.5 sin²α + 3γ cos 2α)/(1 + 3γ)", "pending", note=note),
+    ]
+
+
+INTRO_REDUCTION = """\
+The statue on a sliding pedestal, the library's main model, has no published closed form of its own.
+What can be checked is that it reduces to the validated cases: with a pedestal the floor holds it is
+Housner's block (§1–2), with a statue that cannot rock it is Newmark's sliding block (§6), and with
+μs ≤ tan α the statue never rocks (the slide-before-rock branch of Shenton's criterion, §5). The
+paper's own case studies are compared in `docs/paper-case-studies.md`."""
+
+INTRO_STACKS = """\
+Stacks of blocks (a statue on a plinth that can itself rock, columns with a cap) need the general
+stack engine of issue 11. Their checks are listed here so that they are not forgotten."""
+
+
+def sections(quick: bool, progress) -> list[Section]:
+    progress("pedestal model: reductions")
+    return [Section("pedestal", "7. The statue-on-pedestal model: reduction to the validated cases", INTRO_REDUCTION,
+                    reduction_rows(quick)),
+            Section("stacks", "8. Two-block stacks", INTRO_STACKS, pending_rows())]
