@@ -62,8 +62,6 @@ def _same(a, b) -> bool:
 
 # ----------------------------------------------------------------------------- run
 def test_run_is_exported_from_the_package():
-    if not hasattr(rk, "run"):
-        pytest.skip("rocking.run not exported yet (the lead adds it to rocking/__init__.py)")
     assert rk.run is runner.run
 
 

@@ -262,7 +262,6 @@ def test_values_that_overflow_in_si_units(tmp_path):
 
 # ====================================================================== the web page
 def test_web_units_selector_against_the_header(tmp_path):
-    pytest.importorskip("flask")
     from rocking.web.app import create_app
 
     from test_web import FORM, text_of

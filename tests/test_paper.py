@@ -19,12 +19,19 @@ import rocking as rk
 from oracles import closed_forms as cf
 from rocking.analyses import paper
 from rocking.analyses.paper import PAPER_CASES, TABLE_1, case_named, run_case, variant_setup
+from rocking.models import dynamics
+from rocking.models.parameters import pack
 
 A, G, OMEGA = TABLE_1.amplitude, TABLE_1.gravity, 2 * math.pi * TABLE_1.frequency
 T_FIRST_STOP = 0.27093451  # derivation.md item 1: μk g t = (A/ω) sin ωt
 T_RESLIP = 0.29061198  # acos(−μs g / A)/ω
 T_ROCK_9B = 0.27540759  # acos(−g tan α / A)/ω, H = 3 m
-EVENT_TOL = 1e-6  # s
+# The same instants to full precision (the 8 digits above are a table's rounding), for the
+# event tolerance of the oracles (O1: 1e-9 s).
+EXACT_FIRST_STOP = cf.seed_first_stop_phase(A, 0.3) / OMEGA
+EXACT_RESLIP = cf.seed_reslip_phase(A, 0.4) / OMEGA
+EXACT_ROCK_9B = cf.seed_rock_onset_phase(A, 0.5, 1.5) / OMEGA
+EVENT_TOL = 1e-9  # s
 
 
 @pytest.fixture(scope="module")
@@ -35,9 +42,18 @@ def runs():
 
 def test_closed_form_event_times_match_the_oracles():
     # The literal constants above are the oracle module's values (guards against typos).
-    assert cf.seed_first_stop_phase(A, 0.3) / OMEGA == pytest.approx(T_FIRST_STOP, abs=1e-8)
-    assert cf.seed_reslip_phase(A, 0.4) / OMEGA == pytest.approx(T_RESLIP, abs=1e-8)
-    assert cf.seed_rock_onset_phase(A, 0.5, 1.5) / OMEGA == pytest.approx(T_ROCK_9B, abs=1e-8)
+    assert EXACT_FIRST_STOP == pytest.approx(T_FIRST_STOP, abs=1e-8)
+    assert EXACT_RESLIP == pytest.approx(T_RESLIP, abs=1e-8)
+    assert EXACT_ROCK_9B == pytest.approx(T_ROCK_9B, abs=1e-8)
+    # and the closed forms they stand for, typed here: μk g t = (A/ω) sin ωt (first stop, solved
+    # by bisection), cos ωt = −μs g/A (re-slip), cos ωt = −g tan α/A (9b's rocking onset).
+    lo, hi = 0.2, 0.3
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if A / OMEGA * math.sin(OMEGA * mid) > 0.3 * G * mid else (lo, mid)
+    assert EXACT_FIRST_STOP == pytest.approx(0.5 * (lo + hi), abs=1e-15)
+    assert EXACT_RESLIP == pytest.approx(math.acos(-0.4 * G / A) / OMEGA, abs=1e-15)
+    assert EXACT_ROCK_9B == pytest.approx(math.acos(-G * (0.5 / 1.5) / A) / OMEGA, abs=1e-15)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -52,9 +68,9 @@ def test_9a_statue_never_rocks_and_pedestal_stops_then_slips(runs, variant):
     assert all(e.kind != rk.EventKind.UPLIFT for e in r.events)
     stop, slip = r.events[0], r.events[1]
     assert (stop.kind, stop.before, stop.after) == (rk.EventKind.STOP, rk.Regime.SLIDE, rk.Regime.REST)
-    assert stop.time == pytest.approx(T_FIRST_STOP, abs=EVENT_TOL)
+    assert stop.time == pytest.approx(EXACT_FIRST_STOP, abs=EVENT_TOL)
     assert (slip.kind, slip.before, slip.after) == (rk.EventKind.SLIP, rk.Regime.REST, rk.Regime.SLIDE)
-    assert slip.time == pytest.approx(T_RESLIP, abs=EVENT_TOL)
+    assert slip.time == pytest.approx(EXACT_RESLIP, abs=EVENT_TOL)
 
 
 def test_9a_statue_alone_on_the_floor_friction_slides_and_never_rocks(runs):
@@ -79,10 +95,10 @@ def test_9b_first_stop_then_rocking_onset(runs):
     r = runs["9b"]["pedestal"]
     stop, uplift = r.events[0], r.events[1]
     assert (stop.kind, stop.after) == (rk.EventKind.STOP, rk.Regime.REST)
-    assert stop.time == pytest.approx(T_FIRST_STOP, abs=EVENT_TOL)
+    assert stop.time == pytest.approx(EXACT_FIRST_STOP, abs=EVENT_TOL)
     assert (uplift.kind, uplift.before, uplift.after) == (rk.EventKind.UPLIFT, rk.Regime.REST, rk.Regime.ROCK)
-    assert uplift.time == pytest.approx(T_ROCK_9B, abs=EVENT_TOL)
-    assert uplift.time < T_RESLIP
+    assert uplift.time == pytest.approx(EXACT_ROCK_9B, abs=EVENT_TOL)
+    assert uplift.time < EXACT_RESLIP
 
 
 # ---------------------------------------------------------------------------------------------
@@ -115,15 +131,30 @@ def test_regime_at_t0(runs, name):
 def test_12b_held_pedestal_margin_is_small():
     # Worked check of derivation §3.5 for 12b: stuck pedestal, statue starting to rock at t = 0⁺
     # (θ = θ̇ = 0, s = −1): the friction demand is just below μs·N with the full normal force.
-    st = case_named("12b").statue()
-    m1, m2, _b, _h, R = TABLE_1.pedestal_mass, st.mass, st.b, st.h, st.semi_diagonal
-    M, I_O, alpha = m1 + m2, st.inertia_about_corner, st.slenderness
+    case = case_named("12b")
+    st = case.statue()
+    m1, m2, b, h = TABLE_1.pedestal_mass, st.mass, 0.5 * st.width, 0.5 * st.height
+    M, R = m1 + m2, math.hypot(b, h)
+    I_O, alpha = 4 / 3 * m2 * R**2, math.atan2(b, h)
     s, phi = -1, alpha
     thdd = -m2 * R * (math.cos(phi) * A + s * math.sin(phi) * G) / I_O
     f_req = M * A + m2 * R * math.cos(phi) * thdd
     n_full = M * G + m2 * R * s * math.sin(phi) * thdd
     assert f_req < 0.4 * n_full < 1.01 * f_req  # margin below 1%
     assert f_req > 0.4 * M * G  # with the paper's N = M g it would slide at once
+    # The library's equations give the same forces ...
+    system, options = variant_setup(case, "pedestal")
+    p = pack(system, gravity=G, normal_force="full", impact="coulomb", rest_velocity=1e-6)
+    udd, thdd_lib, ok = dynamics.accelerations(p, 0, s, 0.0, 0.0, 0.0, A, 0.0)
+    assert ok and udd == 0.0 and thdd_lib == pytest.approx(thdd, rel=1e-12)
+    f_lib, n_lib = dynamics.floor_forces(p, s, 0.0, 0.0, A, 0.0, udd, thdd_lib)
+    assert (f_lib, n_lib) == pytest.approx((f_req, n_full), rel=1e-12)
+    # ... and so the verdicts: the pedestal held at t = 0⁺ with the full N, sliding with M·g.
+    full = rk.simulate(system, paper.paper_motion(case), duration=0.05, options=options)
+    assert rk.Regime(int(full.regime[0])) == rk.Regime.ROCK
+    paper_n = rk.simulate(system, paper.paper_motion(case), duration=0.05,
+                          options=rk.Options(gravity=G, normal_force="paper"))
+    assert rk.Regime(int(paper_n.regime[0])) == rk.Regime.SLIDE_ROCK
 
 
 # ---------------------------------------------------------------------------------------------
@@ -259,7 +290,7 @@ def test_paper_omega_option():
 
 
 def test_cli_paper_command(tmp_path):
-    typer = pytest.importorskip("typer")
+    import typer  # a declared dependency: missing, this must fail, not skip
     from typer.testing import CliRunner
 
     from rocking.cli.paper import register
@@ -285,7 +316,7 @@ def test_cli_paper_command(tmp_path):
 
 
 def test_rocking_cli_registers_paper_and_rejects_bad_input(tmp_path):
-    main = pytest.importorskip("rocking.cli.main").main
+    from rocking.cli.main import main  # the package's own module: an import error is a failure
     not_a_dir = tmp_path / "file.txt"
     not_a_dir.write_text("x")
     assert main(["paper", "--out", str(not_a_dir)]) == 2

@@ -8,7 +8,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rocking.constants import STANDARD_GRAVITY as G
 from rocking.excitation.base import KIND_SAMPLED, KIND_ZERO, N_PARAMS
 from rocking.excitation.record import GroundMotion
 from rocking.io.records import (
@@ -18,6 +17,10 @@ from rocking.io.records import (
     resolve_record,
     units_to_si,
 )
+
+# Standard gravity, m/s², by definition (3rd CGPM, 1901): typed here, not read from the package
+# under test, so that a wrong conversion constant there cannot cancel out of these checks.
+G = 9.80665
 
 # From rocking/data/records/README.md: file stem -> (points, dt in s, PGA in g, units).
 TABLE = {

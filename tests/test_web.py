@@ -15,7 +15,7 @@ from html import unescape
 
 import pytest
 
-pytest.importorskip("flask")
+import flask  # noqa: E402, F401 - a declared dependency: missing, these tests must fail, not skip
 
 import rocking as rk  # noqa: E402
 from rocking.io.records import bundled_records  # noqa: E402

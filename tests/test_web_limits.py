@@ -21,7 +21,7 @@ from urllib.parse import urlencode
 
 import pytest
 
-pytest.importorskip("flask")
+import flask  # noqa: E402, F401 - a declared dependency: missing, these tests must fail, not skip
 
 from rocking.web import tasks  # noqa: E402
 from rocking.web.app import create_app  # noqa: E402

@@ -319,8 +319,10 @@ class Response:
     # -- key point kinematics (paper Eqs. 7–13) --------------------------------------------
     def key_point(self, x: float, y: float) -> dict[str, np.ndarray]:
         """Motion of a point P of the statue, given at rest by (x, y) in m from the centre of
-        its base (y up). Returns its horizontal and vertical displacement relative to the
-        floor (m) and its absolute horizontal acceleration (m/s², Eq. 13), at the saved times.
+        its base (y up). Returns, at the saved times, its horizontal and vertical displacement
+        relative to the floor (``x``, ``y``, m), its velocity relative to the floor (``x_dot``,
+        ``y_dot``, m/s) and its absolute horizontal acceleration (``absolute_acceleration``,
+        m/s², Eq. 13).
 
         Eq. 12 is used with θ̇² in the centripetal term (the paper prints θ̇; P7).
         """
@@ -344,6 +346,8 @@ class Response:
         return {
             "x": self.u + dx,
             "y": dy,
+            "x_dot": ud + (-sn * rx + c * y) * thd,  # time derivatives of Eqs. 8–9
+            "y_dot": -(c * rx + sn * y) * thd,
             "absolute_acceleration": a_g + udd + acc_rel,  # Eq. 13
         }
 
