@@ -31,7 +31,8 @@ The MuJoCo model (MJCF string below):
   little), then time, the platform and all velocities are reset.
 
 Measured, in one run, against ``rocking`` (compiled solver, default tolerances, save_dt = 1 ms)
-and the SciPy reference (``simulate_reference``, rtol 1e-12, atol 1e-13) for r = 0.8 and r = Housner:
+and the SciPy reference (the integrator cross-check ``simulate_crosscheck``, rtol 1e-12, atol 1e-13) for
+r = 0.8 and r = Housner:
 
 * wall time per 25 s simulation: MuJoCo ``rollout`` (median of the repeats, settling excluded,
   the full 25 s even after an overturn), a plain Python ``mj_step`` loop (main models), the
@@ -72,7 +73,7 @@ except ImportError as exc:  # optional extra
     _IMPORT_ERROR = exc
 
 import rocking as rk
-from rocking.solver.reference import simulate_reference
+from rocking.solver.crosscheck import simulate_crosscheck
 
 WIDTH, HEIGHT, DEPTH, MASS = 1.0, 4.0, 0.2, 1.0
 AMPLITUDE, FREQUENCY, CYCLES = 6.75, 1.2, 30
@@ -286,9 +287,9 @@ def main(argv=None) -> int:
         tr = []
         for _ in range(repeats):
             t0 = time.perf_counter()
-            simulate_reference(system, motion, options=REF_OPTIONS, save=False)
+            simulate_crosscheck(system, motion, options=REF_OPTIONS, save=False)
             tr.append(time.perf_counter() - t0)
-        ref = simulate_reference(system, motion, options=REF_OPTIONS, save_dt=SAVE_DT)
+        ref = simulate_crosscheck(system, motion, options=REF_OPTIONS, save_dt=SAVE_DT)
         k, th = on_grid(comp.t, comp.theta)
         ref_imp = [i for i in ref["impacts"] if i.time <= WINDOW]
         refs[name] = {"ref": ref, "comp": comp, "t_comp": statistics.median(tc), "t_ref": statistics.median(tr),
@@ -306,7 +307,7 @@ def main(argv=None) -> int:
         print(f"{name:8s} {1e3 * d['t_comp']:11.2f} {1e3 * d['t_ref']:8.0f} "
               f"{_fmt_t(comp.overturn_time if comp.overturned else None):>8s}/{_fmt_t(ref['overturn_time']):>8s} "
               f"{first:>26s} {ratio:7.4f} {d['diff_comp']:18.1e}")
-    print(f"  (compiled: rk.simulate(save=True, save_dt=1 ms), default rtol/atol; ref: simulate_reference, "
+    print(f"  (compiled: rk.simulate(save=True, save_dt=1 ms), default rtol/atol; ref: simulate_crosscheck, "
           f"rtol 1e-12, save=False; {len(refs['r=0.8']['impacts'])} / {len(refs['Housner']['impacts'])} "
           f"impacts ≤ {WINDOW:g} s)\n")
 

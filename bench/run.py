@@ -1,4 +1,5 @@
-"""On-demand benchmark: the compiled solver against the SciPy reference solver.
+"""On-demand benchmark: the compiled solver against the SciPy reference, its integrator cross-check
+(``rocking.solver.crosscheck``: the same physics integrated by ``solve_ivp``).
 
     .venv/bin/python bench/run.py            # cases (a)-(c), batch of 2 000 runs
     .venv/bin/python bench/run.py --full     # batch of 10 000 runs
@@ -31,7 +32,7 @@ import scipy  # noqa: E402
 import rocking as rk  # noqa: E402
 from cases import Case, batch_grid, cases, paper_motion  # noqa: E402
 from rocking.analyses.batch import run_cases  # noqa: E402
-from rocking.solver.reference import simulate_reference  # noqa: E402
+from rocking.solver.crosscheck import simulate_crosscheck  # noqa: E402
 
 ACCURACY_WINDOW = 5.0  # s
 
@@ -41,7 +42,7 @@ def _compiled(case: Case, options: rk.Options, save: bool = False):
 
 
 def _reference(case: Case, options: rk.Options, save: bool = False, save_dt: float = 0.01):
-    return simulate_reference(case.system, case.motion, duration=case.duration, options=options, save=save,
+    return simulate_crosscheck(case.system, case.motion, duration=case.duration, options=options, save=save,
                               save_dt=save_dt)
 
 
@@ -71,7 +72,7 @@ def _accuracy(case: Case, c_options: rk.Options, r_options: rk.Options) -> tuple
     dt = case.save_dt
     c = rk.simulate(case.system, case.motion, duration=case.duration,
                     options=rk.Options(**{**_fields(c_options), "save_dt": dt}), throw=False)
-    r = simulate_reference(case.system, case.motion, duration=case.duration, options=r_options, save_dt=dt)
+    r = simulate_crosscheck(case.system, case.motion, duration=case.duration, options=r_options, save_dt=dt)
     k = np.rint(c.t / dt)
     on = c.t == k * dt
     _, first = np.unique(k[on], return_index=True)
@@ -133,10 +134,10 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     if all_cases:
         c0 = all_cases[0]
-        simulate_reference(c0.system, c0.motion, duration=1.0, options=timing)
+        simulate_crosscheck(c0.system, c0.motion, duration=1.0, options=timing)
     for case in all_cases:
         if case.system.pedestal is not None or case.system.statue.friction is not None:
-            simulate_reference(case.system, case.motion, duration=1.0, options=timing)
+            simulate_crosscheck(case.system, case.motion, duration=1.0, options=timing)
     warm_reference = time.perf_counter() - t0
     print(f"warm-up (JIT compilation or cache load): compiled {warm_compiled:.1f} s, "
           f"reference {warm_reference:.1f} s\n")
@@ -182,7 +183,7 @@ def main(argv=None) -> int:
         k = max(1, min(args.ref_batch, len(motions)))
         picks = sorted({int(round(i)) for i in np.linspace(0, len(motions) - 1, k)})
         t0 = time.perf_counter()
-        ref_over = [simulate_reference(system, motions[i], options=timing, save=False)["overturned"] for i in picks]
+        ref_over = [simulate_crosscheck(system, motions[i], options=timing, save=False)["overturned"] for i in picks]
         el_r = time.perf_counter() - t0
         t0 = time.perf_counter()
         reps = 5

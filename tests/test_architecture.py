@@ -53,3 +53,47 @@ def test_layer_imports_flow_one_way(layer):
         if bad:
             offenders[str(path.relative_to(PKG))] = sorted(bad)
     assert not offenders, f"{layer} imports layers above it: {offenders}"
+
+
+def _module_imports(path: Path) -> set[Path]:
+    """The rocking modules (files) a module imports from, relative or absolute, including
+    submodules imported by name (``from ..integrators import dop853``)."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    out = set()
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.ImportFrom):
+            continue
+        if node.level > 0:
+            base = path.parent
+            for _ in range(node.level - 1):
+                base = base.parent
+            parts = node.module.split(".") if node.module else []
+        elif node.module and node.module.startswith("rocking."):
+            base, parts = PKG, node.module.split(".")[1:]
+        else:
+            continue
+        target = base.joinpath(*parts)
+        candidates = [target.with_suffix(".py"), target / "__init__.py"]
+        candidates += [target / f"{alias.name}.py" for alias in node.names]
+        out.update(c for c in candidates if c.exists())
+    return out
+
+
+def test_numba_cache_fingerprint_covers_every_compiled_module():
+    """Numba's disk cache checks only a function's own file, not its callees', so
+    rocking.solver._CORE must list every module with compiled code that the compiled solver
+    reaches through its imports: an edit to one left out (models/transitions.py was) would leave a
+    stale solver running."""
+    from rocking.solver import _CORE
+
+    seen, todo = set(), [PKG / "solver" / "compiled.py"]
+    while todo:
+        path = todo.pop()
+        if path in seen:
+            continue
+        seen.add(path)
+        todo.extend(_module_imports(path) - seen)
+    compiled = {str(p.relative_to(PKG)) for p in seen if "njit" in p.read_text(encoding="utf-8")
+                and p.name != "__init__.py"}
+    missing = sorted(compiled - set(_CORE))
+    assert not missing, f"compiled modules missing from rocking.solver._CORE: {missing}"

@@ -16,7 +16,7 @@ import pytest
 
 import rocking as rk
 from rocking.cli import main
-from rocking.solver.reference import simulate_reference
+from rocking.solver.crosscheck import simulate_crosscheck
 from rocking.simulation import ResourceLimitError
 
 from helpers import alone, block
@@ -94,11 +94,11 @@ def test_free_slide_after_the_motion_stops_as_its_closed_form():
     assert r.u_dot[-1] == 0.0 and r.theta[-1] == 0.0 and r.theta_dot[-1] == 0.0
 
 
-def test_free_rocking_after_the_motion_ends_at_rest_and_agrees_with_the_reference_solver():
+def test_free_rocking_after_the_motion_ends_at_rest_and_agrees_with_the_integrator_crosscheck():
     statue = block(0.25, 1.0, restitution=0.8)
     motion = rk.Harmonic(amplitude=4.0, frequency=1.2, cycles=3)  # rocks, does not fall
     r = rk.simulate(alone(statue), motion, options=OPTS)
-    ref = simulate_reference(alone(statue), motion, options=OPTS)
+    ref = simulate_crosscheck(alone(statue), motion, options=OPTS)
     assert r.status == ref["status"] == "completed"
     assert r.end_time > motion.duration + 0.5  # the statue rocked on after the floor stopped
     # Both end at the impact that the rest rule closes (|θ̇⁺| below rest_velocity).

@@ -1,7 +1,8 @@
 """What happens when a guard fires: the transition (reset) of the hybrid system.
 
-Shared by the compiled solver and the scipy reference solver, so both apply exactly the same
-rules; only *when* the guard fires is found by each solver's own event location.
+Shared by the compiled solver and the SciPy integrator cross-check (``solver.crosscheck``), so both
+apply exactly the same rules; only *when* the guard fires is found by each solver's own event
+location.
 """
 
 from __future__ import annotations

@@ -1,4 +1,5 @@
-"""Solvers of the hybrid (regime-switching) equations: compiled event-driven, scipy reference.
+"""Solvers of the hybrid (regime-switching) equations: the compiled event-driven solver, and a
+SciPy integrator cross-check of the same equations (``crosscheck``: tests and benchmarks only).
 
 Numba's on-disk cache checks only the source file of each cached function, not the files of the
 functions it calls, so an edited physics module could leave a stale compiled solver behind.
@@ -13,7 +14,7 @@ from pathlib import Path
 
 _PKG = Path(__file__).resolve().parent.parent
 _CORE = [
-    "models/dynamics.py", "models/modes.py", "models/parameters.py", "contact/impact.py",
+    "models/dynamics.py", "models/modes.py", "models/parameters.py", "models/transitions.py", "contact/impact.py",
     "excitation/signal.py", "excitation/base.py", "integrators/dopri5.py", "integrators/dop853.py",
     "solver/compiled.py",
 ]

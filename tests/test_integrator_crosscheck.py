@@ -1,11 +1,17 @@
-"""The compiled solver against an independent integrator of the same model.
+"""Integrator cross-check: the compiled solver against the same physics integrated by SciPy.
 
-``rocking.solver.reference.simulate_reference`` integrates the same equations, guards, regime
-selection and impact laws with SciPy's ``solve_ivp`` (DOP853, Brent event location on its dense
-output, one call per smooth segment). Both must give the same rotation history (θ within
-1e-7 rad) and the same events (kind, regimes, time within 1e-7 s) over the first 5 s, and the
-same overturning verdict over the whole run. Beyond a few seconds the rocking response is
-chaotic (differences grow by orders of magnitude per impact), so only the verdict is compared.
+``rocking.solver.crosscheck.simulate_crosscheck`` imports the compiled solver's own equations,
+guards, regime selection, transitions and impact laws and integrates them with SciPy's
+``solve_ivp`` (DOP853, Brent event location on its dense output, one call per smooth segment).
+So these tests check the *integrator and the event location* only (steps, dense output, grazing
+guards, chattering impacts, ties at a segment start, breakpoints, bookkeeping): a mistake in the
+shared physics is made by both solvers and passes here. The physics is checked against an
+independent solver built from the sympy derivation, in ``test_independent_solver.py``.
+
+Both must give the same rotation history (θ within 1e-7 rad) and the same events (kind,
+regimes, time within 1e-7 s) over the first 5 s, and the same overturning verdict over the whole
+run. Beyond a few seconds the rocking response is chaotic (differences grow by orders of
+magnitude per impact), so only the verdict is compared.
 """
 
 from __future__ import annotations
@@ -18,10 +24,10 @@ import pytest
 import rocking as rk
 from oracles import closed_forms as cf
 from rocking.io.records import read_record
-from rocking.solver.reference import simulate_reference
+from rocking.solver.crosscheck import simulate_crosscheck
 
 COMPILED = {"rtol": 1e-10, "atol": 1e-12}
-REFERENCE = {"rtol": 1e-12, "atol": 1e-13}
+CROSSCHECK = {"rtol": 1e-12, "atol": 1e-13}
 THETA_TOL = 1e-7  # rad
 U_TOL = 1e-7  # m
 TIME_TOL = 1e-7  # s
@@ -35,8 +41,8 @@ PAPER_MOTION = rk.Harmonic(amplitude=6.75, frequency=1.2, cycles=30)
 def _both(system, motion, *, duration=None, save_dt=0.01, impact="coulomb", gravity=rk.g, **initial):
     c = rk.simulate(system, motion, duration=duration,
                     options=rk.Options(impact=impact, gravity=gravity, save_dt=save_dt, **COMPILED), **initial)
-    r = simulate_reference(system, motion, duration=duration,
-                           options=rk.Options(impact=impact, gravity=gravity, **REFERENCE), save_dt=save_dt, **initial)
+    r = simulate_crosscheck(system, motion, duration=duration,
+                           options=rk.Options(impact=impact, gravity=gravity, **CROSSCHECK), save_dt=save_dt, **initial)
     return c, r
 
 
@@ -70,20 +76,20 @@ def _assert_agree(c, r, *, dt=0.01, window=WINDOW):
     for k, (a, b) in enumerate(zip(ec, er)):
         assert a[1:] == tuple(b[1:]) and abs(a[0] - b[0]) <= TIME_TOL, (
             f"event {k}: compiled {a[1].name} {a[2].name}->{a[3].name} at t = {a[0]!r}, "
-            f"reference {b[1].name} {b[2].name}->{b[3].name} at t = {b[0]!r}"
+            f"cross-check {b[1].name} {b[2].name}->{b[3].name} at t = {b[0]!r}"
         )
-    assert len(ec) == len(er), f"{len(ec)} compiled events vs {len(er)} reference events up to {window} s"
+    assert len(ec) == len(er), f"{len(ec)} compiled events vs {len(er)} cross-check events up to {window} s"
     return ec
 
 
 def _assert_no_workarounds(r):
-    """The reference did not have to resolve a tie or an inconsistent regime."""
+    """The cross-check did not have to resolve a tie or an inconsistent regime."""
     d = r["diagnostics"]
     assert d["ignored_start_events"] == 0 and d["immediate_events"] == 0, d
 
 
 # ---------------------------------------------------------------------------------------------
-# (a)-(d): the four reference cases
+# (a)-(d): the four benchmark cases (bench/README.md)
 # ---------------------------------------------------------------------------------------------
 def test_a_single_block_harmonic():
     c, r = _both(rk.System(statue=STATUE), PAPER_MOTION)
@@ -155,9 +161,9 @@ def test_whole_run_verdicts(height, pedestal, expected):
 
 
 # ---------------------------------------------------------------------------------------------
-# The reference itself against closed forms, and its output contract
+# The cross-check itself against closed forms, and its output contract
 # ---------------------------------------------------------------------------------------------
-def test_reference_free_rocking_closed_form():
+def test_crosscheck_free_rocking_closed_form():
     """Release at rest from θ0 (O3): time and velocity of the first impact, Housner's η (O2)."""
     b, h, g = 0.2, 1.0, 9.81
     block = rk.Statue(width=2 * b, height=2 * h, mass=1.0)
@@ -173,13 +179,13 @@ def test_reference_free_rocking_closed_form():
     assert first.theta_dot_after / first.theta_dot_before == pytest.approx(cf.housner_eta(b, h), rel=1e-12)
     assert c.impacts[0].time == pytest.approx(t1, abs=1e-9)
     peaks = cf.amplitude_sequence_exact(alpha, cf.housner_eta(b, h), theta0, 1)
-    # Peak after the first impact, from the reference's grid (θ̇ = 0 lies between samples).
+    # Peak after the first impact, from the cross-check's grid (θ̇ = 0 lies between samples).
     after = (r["t"] > first.time) & (r["t"] < r["impacts"][1].time)
     assert np.max(np.abs(r["theta"][after])) == pytest.approx(peaks[0], rel=1e-4)
     assert r["peak_rotation"] == pytest.approx(theta0, rel=1e-12)
 
 
-def test_reference_tie_at_start():
+def test_crosscheck_tie_at_start():
     """A type-A sine pulse starts rocking exactly at t = 0 (threshold tied): both solvers lift
     the block at once and then agree."""
     b, h = 0.2, 1.0
@@ -191,8 +197,8 @@ def test_reference_tie_at_start():
     assert events[0][1] == rk.EventKind.UPLIFT and events[0][0] == pytest.approx(0.0, abs=1e-12)
 
 
-def test_reference_output_contract():
-    r = simulate_reference(rk.System(statue=STATUE), PAPER_MOTION, duration=2.0, save_dt=0.05)
+def test_crosscheck_output_contract():
+    r = simulate_crosscheck(rk.System(statue=STATUE), PAPER_MOTION, duration=2.0, save_dt=0.05)
     for key in ("t", "u", "u_dot", "theta", "theta_dot", "events", "impacts", "overturned", "overturn_time",
                 "exceeded_alpha_time", "peak_rotation", "peak_sliding", "residual_sliding"):
         assert key in r
@@ -204,11 +210,11 @@ def test_reference_output_contract():
     assert r["overturned"] is False and r["overturn_time"] is None
 
 
-def test_chattering_block_settles_like_the_reference():
+def test_chattering_block_settles_like_the_crosscheck():
     """Just above its threshold the block lifts off every half cycle and settles through ~50
     ever shorter flights (a Zeno sequence ended at rest_velocity). The compiled solver shortens
     its steps to the predicted flights and reads those impacts off the dense output; every one
-    of them must still agree with the reference in time and order."""
+    of them must still agree with the cross-check in time and order."""
     st = rk.Statue(width=1.0, height=4.0, mass=1.0, restitution=0.8)
     c, r = _both(rk.System(statue=st), rk.Harmonic(amplitude=2.6154, frequency=0.5, cycles=30), duration=3.0)
     events = _assert_agree(c, r, window=3.0)

@@ -1,9 +1,18 @@
-"""A second, independent integrator of the same hybrid equations, built on SciPy.
+"""Integrator cross-check: the compiled solver's own hybrid equations, integrated by SciPy.
 
-``simulate_reference`` integrates exactly the model of :mod:`rocking.solver.compiled` — the same
-equations of motion (``models.dynamics.accelerations``), the same guards
-(``models.modes.evaluate_guards``), the same regime selection (``models.modes.select_regime``)
-and the same impact laws (``contact.impact``) — but with different numerics:
+This is *not* an independent check of the physics. ``simulate_crosscheck`` integrates exactly
+the model of :mod:`rocking.solver.compiled` — it imports the same equations of motion
+(``models.dynamics.accelerations``), the same guards (``models.modes.evaluate_guards``), the same
+regime selection (``models.modes.select_regime``), the same transitions
+(``models.transitions.apply_transition``) and so the same impact laws (``contact.impact``) — so a
+mistake there is made twice and the two solvers still agree. What it checks is the numerics of
+the compiled solver: its Runge–Kutta steps, its event location (grazing guards, chattering
+impacts, ties at a segment start), its breakpoints, fast paths and bookkeeping. The physics is
+checked against an independent solver written from the sympy derivation
+(``tests/oracles/independent_solver.py``, ``tests/test_independent_solver.py``). (This module
+was ``rocking.solver.reference``, ``simulate_reference``.)
+
+The numerics that differ from the compiled solver's:
 
 * smooth segments by :func:`scipy.integrate.solve_ivp` with its ``DOP853`` (Hairer's 8(5,3)
   Dormand–Prince pair, SciPy's step-size control and 7th-order dense output), not the compiled
@@ -115,7 +124,7 @@ from .compiled import (
     N_EVENT_FIELDS,
 )
 
-__all__ = ["simulate_reference", "integrate_reference"]
+__all__ = ["simulate_crosscheck", "integrate_crosscheck"]
 
 _EPS = float(np.finfo(float).eps)
 GUARD_DT = 1e-3  # s: largest spacing of the extra guard samples inside a DOP853 step
@@ -231,7 +240,7 @@ def _active_guards(p, sig, s, exceeded):
     return out
 
 
-def integrate_reference(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_step, save_dt, save,
+def integrate_crosscheck(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_step, save_dt, save,
                         max_events, guard_dt=GUARD_DT, t_settle=math.inf):
     """Integrate the hybrid system from ``t0`` to ``t_end`` with SciPy's DOP853.
 
@@ -534,7 +543,7 @@ def integrate_reference(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, a
     }
 
 
-def simulate_reference(
+def simulate_crosscheck(
     system,
     motion,
     *,
@@ -546,7 +555,8 @@ def simulate_reference(
     save_dt: float | None = 0.01,
     save: bool = True,
 ) -> dict:
-    """Simulate ``system`` on ``motion`` with the SciPy reference solver.
+    """Simulate ``system`` on ``motion`` with the SciPy integrator cross-check (same physics as
+    the compiled solver, other numerics; see the module docstring).
 
     Same model, options and run length as :func:`rocking.simulate` (without ``duration``: the
     motion, then free motion until at rest, at most ``options.free_time_limit``; ``options.rtol``/``atol``/``max_step``
@@ -581,7 +591,7 @@ def simulate_reference(
     p = pack(system, gravity=options.gravity, normal_force=options.normal_force, impact=options.impact,
              rest_velocity=options.rest_velocity)
     y0 = np.array([0.0, initial_sliding_velocity, initial_rotation, initial_angular_velocity], dtype=float)
-    raw = integrate_reference(p, motion.signal(), motion.vertical_signal(), _breakpoints(motion, 0.0, t_end), 0.0,
+    raw = integrate_crosscheck(p, motion.signal(), motion.vertical_signal(), _breakpoints(motion, 0.0, t_end), 0.0,
                               t_end, y0, options.rtol, options.atol, options.max_step, float(save_dt), bool(save),
                               int(options.max_events), t_settle=t_settle)
     table = raw["event_table"]
