@@ -24,7 +24,7 @@ class Friction:
     def __post_init__(self):
         for name in ("static", "kinetic"):
             value = getattr(self, name)
-            if value is None:
+            if value is None and name == "kinetic":  # omitted: μk = μs
                 continue
             if not isinstance(value, (int, float)) or math.isnan(value) or value < 0:
                 raise ValueError(f"friction.{name} must be a number ≥ 0, got {value!r}")

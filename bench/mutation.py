@@ -1,0 +1,700 @@
+"""On-demand mutation testing of the physics modules with cosmic-ray (not part of CI).
+
+How to run it, how long it takes and how to read it: bench/MUTATION.md.
+
+Everything happens in a copy of the repository (default /tmp/rocking-mutation/tree): cosmic-ray
+writes each mutant over the module file, and a mutated file in the working tree would break
+whoever else is running the tests there. The copy is imported through PYTHONPATH, and a pytest
+plugin written next to it checks, in every test run, that ``rocking`` really comes from the copy.
+
+Numba keeps compiled code on disk and checks only the source file of each cached function, not
+the files of the functions it calls or of the constants it reads. So every mutant runs with a
+fresh NUMBA_CACHE_DIR: the worker's folder is emptied and refilled from a cache warmed on the
+unmutated copy, minus the entries of the mutated module and of every compiled module that depends
+on it (through the names it imports, followed transitively; see ``stale_modules``). A mutant of a
+module no compiled code reads (``contact/friction.py``, ``excitation/pulses.py``) thus costs a
+test run, not a 35 s recompilation of the solver, and a mutant of ``contact/impact.py`` recompiles
+impact, transitions and the solver core.
+"""
+
+from __future__ import annotations
+
+import argparse
+import ast
+import json
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+DEFAULT_WORK = Path(tempfile.gettempdir()) / "rocking-mutation"
+
+# Module (under src/rocking) -> the test files that exercise it, most direct and fastest first:
+# pytest runs with -x, so a killed mutant usually stops within the first file. A file missing
+# from the copy is left out. (tests/test_oracles_selfcheck.py never imports rocking: it checks
+# the oracles, so it kills no mutant and is in no list.)
+MODULES: dict[str, list[str]] = {
+    "contact/impact.py": [
+        "test_mutants.py", "test_impact_maps.py", "test_statue_on_pedestal.py", "test_single_block_rocking.py",
+        "test_sliding_and_slide_rock.py", "test_paper.py",
+    ],
+    "contact/friction.py": [
+        "test_mutants.py", "test_input_errors.py", "test_config.py", "test_sliding_and_slide_rock.py",
+        "test_statue_on_pedestal.py",
+    ],
+    "excitation/pulses.py": [
+        "test_mutants.py", "test_floor_signals.py", "test_config.py", "test_input_errors.py",
+        "test_single_block_rocking.py", "test_fast_paths.py", "test_integrator_crosscheck.py", "test_run_until_rest.py",
+    ],
+    "excitation/signal.py": [
+        "test_mutants.py", "test_floor_signals.py", "test_fast_paths.py", "test_single_block_rocking.py",
+        "test_sliding_and_slide_rock.py", "test_statue_on_pedestal.py", "test_integrator_crosscheck.py",
+        "test_records.py",
+    ],
+    "models/modes.py": [
+        "test_mutants.py", "test_fast_paths.py", "test_single_block_rocking.py", "test_sliding_and_slide_rock.py",
+        "test_statue_on_pedestal.py", "test_run_until_rest.py",
+    ],
+    "models/dynamics.py": [
+        "test_mutants.py", "test_statue_on_pedestal.py", "test_single_block_rocking.py",
+        "test_sliding_and_slide_rock.py", "test_fast_paths.py", "test_integrator_crosscheck.py",
+    ],
+    "models/transitions.py": [
+        "test_mutants.py", "test_single_block_rocking.py", "test_sliding_and_slide_rock.py",
+        "test_statue_on_pedestal.py", "test_run_until_rest.py",
+    ],
+    "models/parameters.py": [
+        "test_single_block_rocking.py", "test_statue_on_pedestal.py", "test_sliding_and_slide_rock.py",
+    ],
+    "models/bodies.py": [
+        "test_input_errors.py", "test_config.py", "test_single_block_rocking.py", "test_statue_on_pedestal.py",
+        "test_sliding_and_slide_rock.py",
+    ],
+    "excitation/harmonic.py": [
+        "test_config.py", "test_single_block_rocking.py", "test_fast_paths.py", "test_integrator_crosscheck.py",
+    ],
+    "excitation/record.py": ["test_records.py", "test_config.py", "test_single_block_rocking.py"],
+    "solver/compiled.py": [
+        "test_fast_paths.py", "test_single_block_rocking.py", "test_sliding_and_slide_rock.py",
+        "test_statue_on_pedestal.py", "test_integrator_crosscheck.py", "test_run_until_rest.py", "test_interrupts.py",
+    ],
+    "solver/crosscheck.py": ["test_integrator_crosscheck.py"],
+    "io/records.py": ["test_records.py", "test_fuzz_inputs.py", "test_config.py"],
+    "models/regimes.py": ["test_single_block_rocking.py", "test_statue_on_pedestal.py", "test_run_until_rest.py"],
+    "excitation/base.py": ["test_floor_signals.py", "test_single_block_rocking.py", "test_records.py"],
+    "excitation/_checks.py": ["test_input_errors.py", "test_config.py", "test_fuzz_inputs.py"],
+    "solver/signals.py": ["test_interrupts.py"],
+    "solver/warmup.py": ["test_install.py", "test_cli.py"],
+    "solver/__init__.py": ["test_install.py", "test_single_block_rocking.py"],
+}
+
+# One meaningful mutant per site, as mutmut makes, instead of cosmic-ray's every-operator-to-every-
+# operator cross product (12 mutants per `*`, most of them type errors that any test kills). A
+# comparison gets its negation and its boundary shift; arithmetic its inverse operation.
+KEEP_OPERATORS = {
+    "core/ReplaceBinaryOperator_Add_Sub", "core/ReplaceBinaryOperator_Sub_Add",
+    "core/ReplaceBinaryOperator_Mul_Div", "core/ReplaceBinaryOperator_Div_Mul",
+    "core/ReplaceBinaryOperator_FloorDiv_Div", "core/ReplaceBinaryOperator_Mod_FloorDiv",
+    "core/ReplaceBinaryOperator_Pow_Mul",
+    "core/ReplaceComparisonOperator_Lt_GtE", "core/ReplaceComparisonOperator_Lt_LtE",
+    "core/ReplaceComparisonOperator_LtE_Gt", "core/ReplaceComparisonOperator_LtE_Lt",
+    "core/ReplaceComparisonOperator_Gt_LtE", "core/ReplaceComparisonOperator_Gt_GtE",
+    "core/ReplaceComparisonOperator_GtE_Lt", "core/ReplaceComparisonOperator_GtE_Gt",
+    "core/ReplaceComparisonOperator_Eq_NotEq", "core/ReplaceComparisonOperator_NotEq_Eq",
+    "core/ReplaceComparisonOperator_Is_IsNot", "core/ReplaceComparisonOperator_IsNot_Is",
+    "core/ReplaceUnaryOperator_Delete_USub", "core/ReplaceUnaryOperator_Delete_Not",
+    "core/AddNot", "core/ReplaceTrueWithFalse", "core/ReplaceFalseWithTrue",
+    "core/ReplaceAndWithOr", "core/ReplaceOrWithAnd",
+    "core/ReplaceBreakWithContinue", "core/ReplaceContinueWithBreak",
+    "core/NumberReplacer", "core/ZeroIterationForLoop", "core/ExceptionReplacer",
+    # NumberReplacer makes n+1 and n-1 of each number; only n+1 is run (see init_session).
+    # Not kept: RemoveDecorator (without @njit a function computes the same thing in Python, or
+    # fails to type in its compiled caller: no physics is tested either way), the unary
+    # swaps other than deletion, and the parameterised VariableReplacer/VariableInserter.
+}
+
+GUARD_PLUGIN = "rocking_mutation_guard"
+_GUARD_SOURCE = '''"""Written by bench/mutation.py: stop at once if rocking is imported from anywhere but the copy."""
+import os
+
+import rocking
+
+
+def pytest_sessionstart(session):
+    expected = os.environ["ROCKING_MUTATION_SRC"]
+    if not os.path.realpath(rocking.__file__).startswith(os.path.realpath(expected) + os.sep):
+        raise SystemExit(f"rocking imported from {rocking.__file__}, not from the copy {expected}")
+'''
+
+
+# ---------------------------------------------------------------------------------------------
+# Which compiled modules a change to a module can leave stale in numba's cache
+
+
+def _module_file(src: Path, dotted: str) -> Path | None:
+    base = src.joinpath(*dotted.split("."))
+    if base.with_suffix(".py").is_file():
+        return base.with_suffix(".py")
+    if (base / "__init__.py").is_file():
+        return base / "__init__.py"
+    return None
+
+
+class _Module:
+    """What the cache analysis needs of one module: is it compiled, what it imports, its bindings."""
+
+    def __init__(self, src: Path, path: Path):
+        self.rel = path.relative_to(src / "rocking").as_posix()
+        self.tree = ast.parse(path.read_text(encoding="utf-8"))
+        parts = list(path.relative_to(src).with_suffix("").parts)
+        package = parts[:-1]  # the package a relative import starts from, for a module and an __init__ alike
+        self.imports: dict[str, tuple[Path, str | None]] = {}  # local name -> (module file, name or None)
+        self.compiled = False
+        for node in self.tree.body:
+            if isinstance(node, ast.ImportFrom):
+                if node.level:
+                    anchor = package[: len(package) - node.level + 1]
+                    dotted = ".".join(anchor + ([node.module] if node.module else []))
+                else:
+                    dotted = node.module or ""
+                if dotted.split(".")[0] == "numba":
+                    self.compiled = True
+                target = _module_file(src, dotted)
+                if target is None:
+                    continue
+                for alias in node.names:
+                    sub = _module_file(src, f"{dotted}.{alias.name}")
+                    local = alias.asname or alias.name
+                    self.imports[local] = (sub, None) if sub is not None else (target, alias.name)
+            elif isinstance(node, ast.Import):
+                for alias in node.names:
+                    if alias.name.split(".")[0] == "numba":
+                        self.compiled = True
+                    target = _module_file(src, alias.name)
+                    if target is not None:
+                        self.imports[(alias.asname or alias.name).split(".")[0]] = (target, None)
+
+    def binding(self, name: str) -> ast.stmt | None:
+        for node in self.tree.body:
+            targets: list[ast.AST] = []
+            if isinstance(node, (ast.FunctionDef, ast.ClassDef)) and node.name == name:
+                return node
+            if isinstance(node, ast.Assign):
+                targets = node.targets
+            elif isinstance(node, ast.AnnAssign):
+                targets = [node.target]
+            for target in targets:
+                if any(isinstance(n, ast.Name) and n.id == name for n in ast.walk(target)):
+                    return node
+        return None
+
+
+def _modules(src: Path) -> dict[Path, _Module]:
+    mods = {}
+    for p in sorted((src / "rocking").rglob("*.py")):
+        try:
+            mods[p] = _Module(src, p)
+        except SyntaxError:  # a file being written: nothing that runs can import it either
+            print(f"warning: {p} does not parse; left out of the cache analysis", file=sys.stderr)
+    return mods
+
+
+def _deps(mods: dict[Path, _Module], path: Path, name: str | None, seen: set) -> set[Path]:
+    """Module files whose source can change the compiled code or the constant reached through
+    ``path`` (and ``name`` in it; None = the whole module). Over-approximates: a compiled module
+    depends on everything it imports (its callees are linked into its cache entries); a plain
+    module's constant depends on the module and on what its binding statement mentions."""
+    key = (path, name)
+    if key in seen:
+        return set()
+    seen.add(key)
+    mod = mods[path]
+    out = {path}
+    if mod.compiled or name is None:
+        for target, sub in mod.imports.values():
+            out |= _deps(mods, target, sub, seen)
+        return out
+    stmt = mod.binding(name)
+    if stmt is None:  # re-exported or built dynamically: take all of it
+        if name in mod.imports:
+            target, sub = mod.imports[name]
+            return out | _deps(mods, target, sub, seen)
+        return out | _deps(mods, path, None, seen)
+    for node in ast.walk(stmt):
+        if isinstance(node, ast.Name) and node.id in mod.imports:
+            target, sub = mod.imports[node.id]
+            out |= _deps(mods, target, sub, seen)
+    return out
+
+
+def stale_modules(src: Path, mutated: str) -> set[str]:
+    """Compiled modules (paths under src/rocking) whose cached code a change to ``mutated`` can
+    invalidate: the module itself if compiled, and every compiled module depending on it."""
+    mods = _modules(src)
+    target = src / "rocking" / mutated
+    stale = {mutated} if mods[target].compiled else set()
+    for path, mod in mods.items():
+        if mod.compiled and target in _deps(mods, path, None, set()):
+            stale.add(mod.rel)
+    return stale
+
+
+def _fill_cache(base: Path, dest: Path, tree_src: Path, stale: set[str]) -> None:
+    """Empty ``dest`` and refill it from ``base`` without the entries of the ``stale`` modules.
+    Numba stores the cache of /x/y/m.py under NUMBA_CACHE_DIR/x/y/ as files named m.<qualname>-..."""
+    shutil.rmtree(dest, ignore_errors=True)
+    dest.mkdir(parents=True)
+    if not base.is_dir():
+        return
+    # numba's own rule for the folder of a source file's entries (its name changed across versions)
+    from numba.core.caching import _CacheLocator
+
+    drop: dict[str, set[str]] = {}
+    for rel in stale:
+        f = (tree_src / "rocking" / rel).resolve()
+        drop.setdefault(_CacheLocator.get_suitable_cache_subpath(str(f)), set()).add(f.stem + ".")
+    dropped: set[str] = set()
+
+    def ignore(folder, names):
+        prefixes = drop.get(os.path.relpath(folder, base), ())
+        out = [n for n in names if any(n.startswith(p) for p in prefixes)]
+        dropped.update(os.path.relpath(folder, base) + "/" + n.split(".")[0] for n in out)
+        return out
+
+    shutil.copytree(base, dest, ignore=ignore, dirs_exist_ok=True)
+    # The tests compile the mutated module or its dependents, so a warmed cache has entries of some
+    # stale module: if none was found, the layout has changed and the mutant would run on stale
+    # compiled code, so stop rather than report it as survived.
+    missing = {(sub, p) for sub, prefixes in drop.items() for p in prefixes} - {
+        (d.rsplit("/", 1)[0], d.rsplit("/", 1)[1] + ".") for d in dropped}
+    if drop and not dropped and any(base.iterdir()):
+        raise SystemExit(f"numba cache layout not understood: no entries for {sorted(missing)} in {base}")
+
+
+# ---------------------------------------------------------------------------------------------
+# The copy of the repository
+
+
+class Work:
+    def __init__(self, root: Path):
+        self.root = root
+        self.tree = root / "tree"
+        self.pristine = root / "pristine"  # the copy's src/ as copied (mtimes kept), to undo leftovers
+        self.base_cache = root / "numba-base"
+        self.worker_cache = root / "numba-worker0"
+        self.plugin_dir = root / "plugin"
+        self.sessions = root / "sessions"
+
+    def slug(self, module: str) -> str:
+        return module.replace("/", "_").removesuffix(".py")
+
+    def config(self, module: str) -> Path:
+        return self.sessions / f"{self.slug(module)}.toml"
+
+    def db(self, module: str) -> Path:
+        return self.sessions / f"{self.slug(module)}.sqlite"
+
+    def meta(self, module: str) -> Path:
+        return self.sessions / f"{self.slug(module)}.json"
+
+    def env(self, cache: Path, tree: Path | None = None) -> dict:
+        tree = tree or self.tree
+        env = dict(os.environ)
+        env.update(
+            PYTHONPATH=os.pathsep.join([str(tree / "src"), str(self.plugin_dir)]),
+            ROCKING_MUTATION_SRC=str(tree / "src"),
+            NUMBA_CACHE_DIR=str(cache),
+            PYTHONDONTWRITEBYTECODE="1",
+            # one core: the other one belongs to whoever else uses the machine
+            NUMBA_NUM_THREADS="1", OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1", MKL_NUM_THREADS="1",
+        )
+        return env
+
+
+def prepare(work: Work, force: bool) -> None:
+    """Copy the working tree (tracked and untracked, not ignored files) to ``work.tree``."""
+    if work.tree.exists() and not force:
+        restore(work)
+        return
+    for p in (work.tree, work.pristine, work.base_cache, work.worker_cache, work.sessions, work.plugin_dir):
+        shutil.rmtree(p, ignore_errors=True)
+    listed = subprocess.run(
+        ["git", "-C", str(REPO), "ls-files", "-co", "--exclude-standard", "-z"],
+        check=True, capture_output=True,
+    ).stdout.decode().split("\0")
+    for rel in filter(None, listed):
+        src = REPO / rel
+        if src.is_file():
+            dst = work.tree / rel
+            dst.parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(src, dst)
+    shutil.copytree(work.tree / "src", work.pristine)
+    work.plugin_dir.mkdir(parents=True)
+    (work.plugin_dir / f"{GUARD_PLUGIN}.py").write_text(_GUARD_SOURCE)
+    work.sessions.mkdir(parents=True)
+    head = subprocess.run(["git", "-C", str(REPO), "rev-parse", "HEAD"], capture_output=True, text=True).stdout
+    dirty = subprocess.run(["git", "-C", str(REPO), "status", "--short", "src"], capture_output=True, text=True).stdout
+    (work.root / "SOURCE.txt").write_text(f"copied {time.strftime('%Y-%m-%d %H:%M')} from {REPO}\nHEAD {head}"
+                                          f"uncommitted changes under src/:\n{dirty or '(none)'}\n")
+    print(f"copied {REPO} to {work.tree}")
+
+
+def restore(work: Work) -> None:
+    """Put back any module an interrupted run left mutated (with its original mtime, which numba's
+    cache index checks)."""
+    for f in work.pristine.rglob("*.py"):
+        dst = work.tree / "src" / f.relative_to(work.pristine)
+        if not dst.exists() or dst.read_bytes() != f.read_bytes() or dst.stat().st_mtime_ns != f.stat().st_mtime_ns:
+            shutil.copy2(f, dst)
+
+
+# ---------------------------------------------------------------------------------------------
+# Tests
+
+
+def _pytest_args(work: Work, module: str, extra: list[str] | None = None) -> list[str]:
+    files = extra or [str(f) for f in (work.tree / "tests" / t for t in MODULES[module]) if f.is_file()]
+    return [sys.executable, "-m", "pytest", "-x", "-q", "--no-header", "-o", "addopts=", "-p", "no:cacheprovider",
+            "-p", GUARD_PLUGIN, *files]
+
+
+def run_tests(work: Work, module: str, cache: Path, extra: list[str] | None = None, quiet=False) -> tuple[int, float]:
+    t0 = time.monotonic()
+    proc = subprocess.run(_pytest_args(work, module, extra), cwd=work.tree, env=work.env(cache),
+                          capture_output=quiet, text=True)
+    if quiet and proc.returncode:
+        print(proc.stdout[-3000:], proc.stderr[-3000:])
+    return proc.returncode, time.monotonic() - t0
+
+
+def worker_test(work: Work, module: str) -> int:
+    """The per-mutant test command cosmic-ray runs (in its own process group, killed on timeout)."""
+    (work.root / "current-test.pid").write_text(str(os.getpid()))
+    _fill_cache(work.base_cache, work.worker_cache, work.tree / "src", stale_modules(work.tree / "src", module))
+    return subprocess.run(_pytest_args(work, module), cwd=work.tree, env=work.env(work.worker_cache)).returncode
+
+
+def baseline(work: Work, module: str) -> dict:
+    """Warm the shared cache on the unmutated copy, then time one unmutated run in the per-mutant
+    conditions (stale entries dropped): that time sets the timeout."""
+    code, warm = run_tests(work, module, work.base_cache, quiet=True)
+    if code:
+        raise SystemExit(f"{module}: the tests fail on the unmutated copy (exit {code}); fix that first")
+    stale = sorted(stale_modules(work.tree / "src", module))
+    _fill_cache(work.base_cache, work.worker_cache, work.tree / "src", set(stale))
+    code, cold = run_tests(work, module, work.worker_cache, quiet=True)
+    if code:
+        raise SystemExit(f"{module}: the tests fail with a fresh cache (exit {code})")
+    meta = {"warm_s": round(warm, 1), "per_mutant_s": round(cold, 1), "recompiled": stale,
+            # A survivor runs every mapped test; when other processes share the CPU it takes 2-3
+            # times the unloaded time, and a timeout counts as killed: keep a wide margin.
+            "timeout_s": round(max(120.0, 5.0 * cold))}
+    work.meta(module).write_text(json.dumps(meta, indent=1))
+    return meta
+
+
+def init_session(work: Work, module: str, timeout: float) -> None:
+    from cosmic_ray.plugins import operator_names
+
+    exclude = sorted(f"{re.escape(n)}$" for n in operator_names() if n not in KEEP_OPERATORS)
+    # The test command runs a copy of this script: editing bench/mutation.py during a session
+    # must not change (or, half-written, break) the command between two mutants.
+    script = work.root / "mutation.py"
+    shutil.copy2(Path(__file__).resolve(), script)
+    command = f"{sys.executable} {script} --work {work.root} _test {module}"
+    config = {
+        "cosmic-ray": {
+            "module-path": str(work.tree / "src" / "rocking" / module),
+            "timeout": timeout,
+            "excluded-modules": [],
+            "test-command": command,
+            "distributor": {"name": "local"},
+            "filters": {"operators-filter": {"exclude-operators": exclude}},
+        }
+    }
+    import toml
+
+    work.config(module).write_text(toml.dumps(config))
+    bindir = Path(sys.executable).parent
+    subprocess.run([bindir / "cosmic-ray", "init", work.config(module), work.db(module)], check=True, cwd=work.tree)
+    subprocess.run([bindir / "cr-filter-operators", work.db(module), work.config(module)], check=True, cwd=work.tree)
+    from cosmic_ray.work_db import WorkDB, use_db
+    from cosmic_ray.work_item import WorkerOutcome, WorkResult
+
+    lines = (work.tree / "src" / "rocking" / module).read_text(encoding="utf-8").splitlines()
+    with use_db(str(work.db(module)), WorkDB.Mode.open) as db:
+        for item in db.pending_work_items:
+            m = item.mutations[0]
+            if not _kept(m, lines[m.start_pos[0] - 1]):
+                db.set_result(item.job_id, WorkResult(output="not in the policy", worker_outcome=WorkerOutcome.SKIPPED))
+
+
+def execute(work: Work, module: str, deadline: float | None) -> bool:
+    """Run the pending mutants of one session; True when it finished, False when stopped at the deadline."""
+    bindir = Path(sys.executable).parent
+    proc = subprocess.Popen([bindir / "cosmic-ray", "exec", work.config(module), work.db(module)], cwd=work.tree)
+    # Stopped by Ctrl-C or `kill PID` alike (a background job starts with SIGINT ignored).
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    signal.signal(signal.SIGTERM, signal.default_int_handler)
+    try:
+        while proc.poll() is None:
+            if deadline is not None and time.time() > deadline:
+                _stop(work, proc)
+                return False
+            time.sleep(2)
+    except KeyboardInterrupt:
+        _stop(work, proc)
+        raise
+    finally:
+        restore(work)
+    return proc.returncode == 0
+
+
+def _stop(work: Work, proc: subprocess.Popen) -> None:
+    # The mutant being tested gets no result and stays pending; `restore` (in execute's finally)
+    # puts the module back. The test command runs in a session of its own, whose group id is the
+    # pid it wrote down.
+    proc.terminate()
+    try:
+        proc.wait(timeout=30)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait()
+    try:
+        pgid = int((work.root / "current-test.pid").read_text())
+        # only if that pid is still our test command (a finished one's pid may have been reused)
+        if b"_test" in Path(f"/proc/{pgid}/cmdline").read_bytes():
+            os.killpg(pgid, signal.SIGKILL)
+    except (OSError, ValueError):
+        pass
+
+
+# ---------------------------------------------------------------------------------------------
+# Results
+
+
+def _results(work: Work, module: str):
+    from cosmic_ray.work_db import WorkDB, use_db
+
+    with use_db(str(work.db(module)), WorkDB.Mode.open) as db:
+        done = {job: result for job, result in db.results}
+        items = list(db.work_items)
+    return items, done
+
+
+def summarise(work: Work, module: str) -> dict:
+    items, done = _results(work, module)
+    counts = dict(mutants=0, killed=0, timeout=0, survived=0, incompetent=0, pending=0)
+    for item in items:
+        result = done.get(item.job_id)
+        if result is not None and result.worker_outcome == "skipped":
+            continue
+        counts["mutants"] += 1
+        if result is None:
+            counts["pending"] += 1
+        elif result.test_outcome == "survived":
+            counts["survived"] += 1
+        elif result.test_outcome == "killed":
+            counts["timeout" if result.output == "timeout" else "killed"] += 1
+        else:
+            counts["incompetent"] += 1
+    return counts
+
+
+def survivors(work: Work, module: str):
+    items, done = _results(work, module)
+    for item in items:
+        result = done.get(item.job_id)
+        if result is not None and result.test_outcome == "survived":
+            yield item, result
+
+
+def describe(item) -> str:
+    m = item.mutations[0]
+    operator = m.operator_name.removeprefix("core/")
+    return f"{item.job_id[:8]}  {m.module_path.name}:{m.start_pos[0]}  {operator}#{m.occurrence}"
+
+
+def find_item(work: Work, job: str):
+    for module in MODULES:
+        if work.db(module).exists():
+            items, _ = _results(work, module)
+            for item in items:
+                if item.job_id.startswith(job):
+                    return module, item
+    raise SystemExit(f"no mutant {job} in {work.sessions}")
+
+
+def try_mutant(work: Work, job: str, tests: list[str]) -> int:
+    """Apply one mutant and run the given tests (taken from the repository, where a new test is
+    written) in a throw-away copy of the copy, with an empty numba cache: a session may be
+    running in the main copy meanwhile. Returns pytest's exit code (0: the mutant survives)."""
+    from cosmic_ray.mutating import apply_mutation
+    from cosmic_ray.plugins import get_operator
+
+    module, item = find_item(work, job)
+    tree, cache = work.root / "try-tree", work.root / "numba-try"
+    for p in (tree, cache):
+        shutil.rmtree(p, ignore_errors=True)
+    shutil.copytree(work.pristine, tree / "src")
+    shutil.copytree(work.tree / "tests", tree / "tests")
+    shutil.copy2(work.tree / "pyproject.toml", tree)
+    args = []
+    for t in tests:
+        file_part, _, node = t.partition("::")
+        src = (REPO / file_part).resolve()
+        dst = tree / src.relative_to(REPO)
+        shutil.copy2(src, dst)
+        args.append(str(dst) + (f"::{node}" if node else ""))
+    m = item.mutations[0]
+    target = tree / "src" / Path(m.module_path).relative_to(work.tree / "src")
+    _, code = apply_mutation(target, get_operator(m.operator_name)(**(m.operator_args or {})), m.occurrence)
+    if code is None:
+        raise SystemExit("mutation could not be applied (has the module changed since the session began?)")
+    print(describe(item), flush=True)
+    cmd = _pytest_args(work, module, args)
+    code = subprocess.run(cmd, cwd=tree, env=work.env(cache, tree)).returncode
+    print("survives" if code == 0 else f"killed (pytest exit {code})")
+    return code
+
+
+def _kept(mutation, line: str) -> bool:
+    """The mutant policy, besides the operator list: one number mutant per literal (occurrences
+    2k and 2k+1 are n+1 and n-1 of the k-th number: whether a constant is tested at all is the
+    question, and a mutant of a compiled module costs a recompilation), and no flag of numba's
+    decorator (cache=, _nrt=: they change when and how code compiles, never what it computes)."""
+    if mutation.operator_name not in KEEP_OPERATORS:
+        return False
+    if mutation.operator_name == "core/NumberReplacer" and mutation.occurrence % 2:
+        return False
+    return not (line.lstrip().startswith("@njit") and mutation.operator_name in
+                ("core/ReplaceTrueWithFalse", "core/ReplaceFalseWithTrue"))
+
+
+def plan(work: Work, modules: list[str]) -> None:
+    """How many mutants each module has under the policy, and roughly how long it takes, from the
+    per-mutant time of a finished baseline or, without one, 45 s for a module that recompiles the
+    solver core and 10 s otherwise (the 2-CPU development machine)."""
+    from cosmic_ray.commands.init import _all_work_items
+
+    print("| module | mutants | recompiles | estimate |")
+    print("|---|---|---|---|")
+    total = 0.0
+    for module in modules:
+        path = REPO / "src" / "rocking" / module
+        lines = path.read_text(encoding="utf-8").splitlines()
+        n = sum(1 for item in _all_work_items([path], {})
+                if _kept(item.mutations[0], lines[item.mutations[0].start_pos[0] - 1]))
+        stale = stale_modules(REPO / "src", module)
+        meta = json.loads(work.meta(module).read_text()) if work.meta(module).exists() else {}
+        per = meta.get("per_mutant_s", 45.0 if "solver/compiled.py" in stale else 10.0)
+        total += n * per
+        print(f"| {module} | {n} | {', '.join(sorted(stale)) or '-'} | {n * per / 60:.0f} min |")
+    print(f"total ≈ {total / 3600:.1f} h on one worker")
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--work", type=Path, default=DEFAULT_WORK, help=f"work folder (default {DEFAULT_WORK})")
+    sub = parser.add_subparsers(dest="cmd", required=True)
+    p = sub.add_parser("prepare", help="copy the repository into the work folder")
+    p.add_argument("--force", action="store_true", help="copy again, dropping every session")
+    p = sub.add_parser("run", help="run (or resume) the sessions of the given modules, in order")
+    p.add_argument("modules", nargs="*", help=f"paths under src/rocking (default: all of {', '.join(MODULES)})")
+    p.add_argument("--minutes", type=float, help="stop after this long (the interrupted mutant stays pending)")
+    p.add_argument("--timeout", type=float, help="seconds per mutant, also for sessions already begun "
+                   "(default: 5 × the baseline's per-mutant time, at least 120)")
+    sub.add_parser("report", help="counts per module")
+    p = sub.add_parser("plan", help="mutants per module under the policy, and a time estimate (runs nothing)")
+    p.add_argument("modules", nargs="*")
+    p = sub.add_parser("survivors", help="list surviving mutants with their diffs")
+    p.add_argument("modules", nargs="*")
+    p = sub.add_parser("show", help="the diff and test output of one mutant")
+    p.add_argument("job")
+    p = sub.add_parser("try", help="apply one mutant in the copy and run the given tests on it")
+    p.add_argument("job")
+    p.add_argument("tests", nargs="+", help="test files or node ids, relative to the repository")
+    p = sub.add_parser("deps", help="which compiled modules a mutant of MODULE recompiles")
+    p.add_argument("module")
+    p = sub.add_parser("_test", help=argparse.SUPPRESS)
+    p.add_argument("module")
+    args = parser.parse_args(argv)
+    work = Work(args.work.resolve())
+
+    if args.cmd == "_test":
+        return worker_test(work, args.module)
+    if args.cmd == "prepare":
+        prepare(work, args.force)
+        return 0
+    if args.cmd == "plan":
+        plan(work, args.modules or list(MODULES))
+        return 0
+    if args.cmd == "deps":
+        print(sorted(stale_modules(REPO / "src", args.module)))
+        return 0
+    if args.cmd == "run":
+        modules = args.modules or list(MODULES)
+        unknown = [m for m in modules if m not in MODULES]
+        if unknown:
+            raise SystemExit(f"no test mapping for {unknown}; add them to MODULES")
+        deadline = time.time() + 60 * args.minutes if args.minutes else None
+        prepare(work, force=False)
+        for module in modules:
+            if not work.db(module).exists():
+                meta = baseline(work, module)
+                print(f"{module}: baseline {meta}", flush=True)
+                init_session(work, module, args.timeout or meta["timeout_s"])
+            else:  # re-warm the shared cache (and check the unmutated tests still pass)
+                if run_tests(work, module, work.base_cache, quiet=True)[0]:
+                    raise SystemExit(f"{module}: the tests fail on the unmutated copy")
+                if args.timeout:
+                    config = work.config(module).read_text()
+                    config = re.sub(r"(?m)^timeout = .*$", f"timeout = {args.timeout}", config)
+                    work.config(module).write_text(config)
+            counts = summarise(work, module)
+            print(f"{module}: {counts['pending']} of {counts['mutants']} mutants to run", flush=True)
+            if not execute(work, module, deadline):
+                print("stopped at the deadline; `run` again to resume")
+                break
+            print(f"{module}: {summarise(work, module)}", flush=True)
+        return 0
+    if args.cmd == "report":
+        print("| module | mutants | killed | timeout | survived | incompetent | pending | per mutant |")
+        print("|---|---|---|---|---|---|---|---|")
+        for module in MODULES:
+            if work.db(module).exists():
+                c = summarise(work, module)
+                meta = json.loads(work.meta(module).read_text()) if work.meta(module).exists() else {}
+                print(f"| {module} | {c['mutants']} | {c['killed']} | {c['timeout']} | {c['survived']} | "
+                      f"{c['incompetent']} | {c['pending']} | {meta.get('per_mutant_s', '?')} s |")
+        return 0
+    if args.cmd == "survivors":
+        for module in args.modules or list(MODULES):
+            if work.db(module).exists():
+                for item, result in survivors(work, module):
+                    print(describe(item))
+                    print("\n".join(line for line in (result.diff or "").splitlines() if line[:1] in "+-"
+                                    and line[:3] not in ("+++", "---")))
+        return 0
+    if args.cmd == "show":
+        module, item = find_item(work, args.job)
+        _, done = _results(work, module)
+        result = done.get(item.job_id)
+        print(describe(item))
+        print(result.diff if result else "(not run yet)")
+        if result:
+            print(result.test_outcome, (result.output or "")[-2000:])
+        return 0
+    if args.cmd == "try":
+        return 1 if try_mutant(work, args.job, args.tests) == 0 else 0
+    return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,195 @@
+"""Tests written to kill the mutants that survived the rest of the suite (bench/MUTATION.md).
+
+Each test names, in its docstring, the mutants it kills (the file:line and the change, as listed
+in bench/MUTATION.md). They check behaviour the suite left open, not the mutation itself.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+import rocking as rk
+
+# ------------------------------------------------------------------------------------------------
+# contact/friction.py
+# ------------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "kwargs",
+    [
+        {"static": -0.1},
+        {"static": math.nan},
+        {"static": "0.4"},
+        {"static": 0.4, "kinetic": -0.1},
+        {"static": 0.4, "kinetic": math.nan},
+    ],
+    ids=["negative", "nan", "text", "negative kinetic", "nan kinetic"],
+)
+def test_friction_refuses_a_negative_nan_or_non_numeric_coefficient(kwargs):
+    """friction.py:25 `for name in []` (no check at all); friction.py:29 `or` → `and` in either
+    place (NaN, a negative value or a text slips through, or a text raises TypeError)."""
+    with pytest.raises(ValueError, match="must be a number ≥ 0"):
+        rk.Friction(**kwargs)
+
+
+def test_friction_checks_the_kinetic_coefficient_after_a_missing_static_one():
+    """friction.py:28 `continue` → `break`: an absent coefficient must not end the checks of the
+    ones after it (with the mutant, -1 is compared with None: a TypeError, not this ValueError)."""
+    with pytest.raises(ValueError):
+        rk.Friction(static=None, kinetic=-1.0)
+
+
+def test_friction_is_a_frozen_keyword_only_slotted_value():
+    """friction.py:9 frozen/kw_only/slots=True → False. Friction is a value: one instance may be
+    shared by several systems, so it must not change under them (frozen); its two coefficients
+    are too easily swapped by position (keyword-only); it carries no other attribute (slots)."""
+    f = rk.Friction(static=0.4, kinetic=0.3)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        f.static = 0.5
+    with pytest.raises(TypeError):
+        rk.Friction(0.4, 0.3)
+    assert not hasattr(f, "__dict__")
+
+
+# ------------------------------------------------------------------------------------------------
+# excitation/pulses.py
+# ------------------------------------------------------------------------------------------------
+
+PULSES = {
+    "sine": (rk.SinePulse, {"amplitude": 2.0, "frequency": 1.0, "phase": 0.5}),
+    "cosine": (rk.CosinePulse, {"amplitude": 2.0, "frequency": 1.0}),
+    "rectangle": (rk.RectanglePulse, {"amplitude": 2.0, "width": 0.5}),
+    "ricker": (rk.RickerPulse, {"amplitude": 2.0, "frequency": 1.0}),
+    "ramp": (rk.Ramp, {"rate": 2.0, "end": 0.5}),
+}
+
+
+@pytest.mark.parametrize("name", sorted(PULSES))
+def test_pulses_are_frozen_and_keyword_only(name):
+    """pulses.py:28/76/109/137/177 frozen or kw_only=True → False, for each pulse class. A motion
+    may be reused by many runs (frozen), and (amplitude, frequency) against (amplitude, width) or
+    (rate, end) are easily swapped by position (keyword-only)."""
+    cls, kwargs = PULSES[name]
+    pulse = cls(**kwargs)
+    first = next(iter(kwargs))
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        setattr(pulse, first, 1.0)
+    with pytest.raises(TypeError):
+        cls(*kwargs.values())
+
+
+def test_sine_pulse_phase_must_lie_below_two_pi():
+    """pulses.py:50 `phase < 2π` → `≤ 2π`, and 2.0 → 3.0 in its bound."""
+    with pytest.raises(ValueError, match="phase must lie in"):
+        rk.SinePulse(amplitude=1.0, frequency=1.0, phase=2.0 * math.pi)
+
+
+def _formula(name, pulse, t):
+    """Each pulse's closed form, written out here (oracle O9, O9b, O8, Ricker, O1)."""
+    if name == "sine":
+        return pulse.amplitude * math.sin(pulse.omega * t + pulse.phase)
+    if name == "cosine":
+        return pulse.amplitude * math.cos(pulse.omega * t)
+    if name == "rectangle":
+        return pulse.amplitude
+    if name == "ricker":
+        x = (math.pi * pulse.frequency * (t - pulse.t0)) ** 2
+        return pulse.amplitude * (1.0 - 2.0 * x) * math.exp(-x)
+    return pulse.rate * t
+
+
+@pytest.mark.parametrize("name", ["sine", "cosine", "rectangle", "ricker"])
+def test_a_pulse_is_on_at_its_start(name):
+    """pulses.py:63/97/126/165 `t >= 0` → `t > 0`: the pulse's first instant belongs to it (its
+    value there is a_p·sin ψ, a_p, a and the Ricker's tail, none of them zero). The ramp starts at
+    k·0 = 0, so its twin mutant at :194 is equivalent (bench/MUTATION.md)."""
+    cls, kwargs = PULSES[name]
+    pulse = cls(**kwargs)
+    expected = _formula(name, pulse, 0.0)
+    assert expected != 0.0
+    assert float(pulse.acceleration(0.0)) == pytest.approx(expected, rel=1e-12)
+
+
+@pytest.mark.parametrize("name", ["cosine", "ricker", "ramp"])
+def test_a_closed_pulse_is_on_at_its_end(name):
+    """pulses.py:97/165/194 `t <= end` → `t < end`: the cosine pulse (a_p at t = 1/f), the Ricker
+    wavelet (its tail at 2 t_0) and the ramp (k·t_end) include their last instant. The sine
+    pulse's last value is sin 2π = 0, so its twin at :63 is equivalent (bench/MUTATION.md)."""
+    cls, kwargs = PULSES[name]
+    pulse = cls(**kwargs)
+    expected = _formula(name, pulse, pulse.duration)
+    assert expected != 0.0
+    assert float(pulse.acceleration(pulse.duration)) == pytest.approx(expected, rel=1e-12)
+
+
+def test_a_rectangle_pulse_is_off_at_its_width():
+    """pulses.py:126 `t < width` → `t <= width`: the rectangle is [0, t_d), as its docstring and
+    the compiled evaluator have it."""
+    pulse = rk.RectanglePulse(amplitude=2.0, width=0.5)
+    assert float(pulse.acceleration(0.5)) == 0.0
+    assert float(pulse.acceleration(np.nextafter(0.5, 0.0))) == 2.0
+
+
+def test_ricker_pulse_lasts_twice_its_centre_time():
+    """pulses.py:160 `2.0 * t0` → `2.0 / t0` or `3.0 * t0`: the wavelet spans [0, 2 t_0],
+    symmetric about its centre, and is zero after it."""
+    pulse = rk.RickerPulse(amplitude=2.0, frequency=1.0)
+    assert pulse.t0 == 1.5
+    assert pulse.duration == 3.0
+    assert float(pulse.acceleration(3.5)) == 0.0
+    assert float(pulse.acceleration(2.5)) == pytest.approx(_formula("ricker", pulse, 2.5), rel=1e-12)
+
+
+# ------------------------------------------------------------------------------------------------
+# contact/impact.py (its two impact laws are checked against the oracle in tests/test_impact_maps.py)
+# ------------------------------------------------------------------------------------------------
+
+
+def test_coulomb_impact_with_no_consistent_sliding_direction_falls_back_to_the_held_pedestal():
+    """impact.py:75 `return 0.0, ...` → `1.0`: when neither sliding direction solves the balances
+    (a squat statue on a light pedestal sliding into the impact), the law returns the held-pedestal
+    outcome (u̇⁺ = 0, θ̇⁺ from the angular momentum about the new pivot) and flags it (ok False)."""
+    from rocking.contact.impact import impact_coulomb
+
+    b, h, m1, m2, u_dot, theta_dot = 0.8, 1.0, 0.3, 1.0, -0.6, 0.3
+    i_o = 4.0 / 3.0 * m2 * (b * b + h * h)
+    eta = 1.0 - 1.5 * b * b / (b * b + h * h)
+    v, w, fx, fy, ok = impact_coulomb(i_o, m1 + m2, m2, b, h, eta, 0.4, 0.3, 1.0, u_dot, theta_dot)
+    w_held = (eta * i_o * theta_dot + m2 * h * u_dot) / i_o
+    assert not ok
+    assert v == 0.0
+    assert w == pytest.approx(w_held, rel=1e-12)
+    assert fx == pytest.approx((m1 + m2) * (0.0 - u_dot) + m2 * h * (w_held - theta_dot), rel=1e-12)
+    assert fy == pytest.approx(m2 * b * (abs(w_held) + abs(theta_dot)), rel=1e-12)
+    assert abs(fx) > 0.4 * fy  # the held pedestal needs more than μs: this is the sliding branch's fallback
+
+
+def test_coulomb_impact_on_the_friction_cone_boundary_holds_the_pedestal():
+    """impact.py:55 `abs(fx) <= mu_s * fy` → `<`: Coulomb's inequality is not strict. When the
+    held-pedestal impulse needs exactly μs, the floor holds the pedestal (u̇⁺ = 0, consistent)."""
+    from rocking.contact.impact import impact_coulomb
+
+    b, h, m1, m2, u_dot, theta_dot = 0.25, 1.0, 1.0, 1.0, 0.0, -0.8
+    i_o = 4.0 / 3.0 * m2 * (b * b + h * h)
+    eta = 1.0 - 1.5 * b * b / (b * b + h * h)
+    _, w_held, fx, fy, _ = impact_coulomb(i_o, m1 + m2, m2, b, h, eta, 0.0, 0.0, 0.0, u_dot, theta_dot)
+    # the μs (among the neighbours of |Fx|/Fy) for which μs·Fy equals |Fx| in floating point
+    mu_s = abs(fx) / fy
+    for _ in range(4):
+        if mu_s * fy == abs(fx):
+            break
+        mu_s = np.nextafter(mu_s, math.inf if mu_s * fy < abs(fx) else 0.0)
+    assert mu_s * fy == abs(fx)
+    v, w, *_, ok = impact_coulomb(i_o, m1 + m2, m2, b, h, eta, mu_s, 0.5 * mu_s, 1.0, u_dot, theta_dot)
+    assert ok and v == 0.0 and w == w_held
+
+
+def test_friction_without_a_static_coefficient_is_refused_at_once():
+    """Found by the mutation run: static=None used to pass and fail later, in mu_s."""
+    with pytest.raises(ValueError, match=r"friction\.static must be a number ≥ 0, got None"):
+        rk.Friction(static=None)
