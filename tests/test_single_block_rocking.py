@@ -267,3 +267,17 @@ def test_a_floor_acceleration_touching_the_threshold_does_not_start_rocking():
     r = rk.simulate(alone(st), pulse, duration=pulse.duration + 25.0 / p, options=OPTS)
     assert not r.overturned
     assert r.peak_rotation == 0.0 and r.summary()["first_rocking_time"] is None
+
+
+def test_housner_restitution_of_a_squat_block_is_clamped_at_zero():
+    """1 − 1.5 sin²α < 0 for α > asin√(2/3): θ̇ would reverse and drive the old corner into the
+    floor. The block lands flat: one plastic impact, then rest."""
+    squat = rk.Statue(width=3.0, height=1.0, mass=1.0)  # α = 1.249 rad
+    assert 1.0 - 1.5 * math.sin(squat.slenderness) ** 2 < 0
+    assert squat.housner_restitution == 0.0 and squat.effective_restitution == 0.0
+    slender = rk.Statue(width=1.0, height=4.0, mass=1.0)
+    assert slender.housner_restitution == pytest.approx(1.0 - 1.5 * math.sin(math.atan(0.25)) ** 2, abs=1e-15)
+    still = rk.Harmonic(amplitude=0.0, frequency=1.0)
+    r = rk.simulate(rk.System(statue=squat), still, duration=5.0, initial_rotation=0.5 * squat.slenderness)
+    assert len(r.impacts) == 1 and r.impacts[0].theta_dot_after == 0.0
+    assert r.theta[-1] == 0.0 and r.theta_dot[-1] == 0.0

@@ -78,8 +78,12 @@ class Statue:
 
     @property
     def housner_restitution(self) -> float:
-        """η = 1 − 1.5·sin²α (paper Eq. 3)."""
-        return 1.0 - 1.5 * math.sin(self.slenderness) ** 2
+        """η = 1 − 1.5·sin²α (paper Eq. 3), clamped at 0.
+
+        The formula turns negative for α > asin√(2/3) = 0.9553 rad (b/h > √2): θ̇ would reverse,
+        which would drive the old corner into the floor. Such a squat block lands flat instead: a
+        plastic impact, η = 0."""
+        return max(0.0, 1.0 - 1.5 * math.sin(self.slenderness) ** 2)
 
     @property
     def effective_restitution(self) -> float:

@@ -69,15 +69,13 @@ def restitution(quick: bool) -> list[Row]:
         ratio = imp.theta_dot_after / imp.theta_dot_before
         same_instant = sum(1 for x in r.impacts if abs(x.time - imp.time) < 1e-9)
         rows.append(Row(
-            f"H2.{len(blocks) + 1}", SRC, f"restitution outside its range: {_name(blk)}", "limitation",
-            published=blk.eta, ours=ratio,
-            note=(f"η = 1 − 1.5 sin²α is negative for α > asin√(2/3) = {math.asin(math.sqrt(2 / 3)):.4f} rad "
-                  f"(b/h > √2): the block cannot go on pivoting about the new corner (its θ̇ would reverse and "
-                  f"the old corner enter the floor); a squat block lands flat, or bounces. The library's "
-                  f"default applies the formula as is: θ̇ reverses (ratio {ratio:.3f}) and {same_instant} such "
-                  f"impacts follow at the same instant (t = {imp.time:.4f} s) until θ̇ is below the rest "
-                  f"threshold. The outcome, at rest at the first impact, is that of a plastic landing, but "
-                  f"the impact count is inflated; `restitution = 0` states it directly")))
+            f"H2.{len(blocks) + 1}", SRC, f"restitution outside the formula's range: {_name(blk)}", "exact",
+            published=max(0.0, blk.eta), ours=ratio + 0.0, tol=1e-12,  # (+ 0.0: no "-0")
+            note=(f"η = 1 − 1.5 sin²α = {blk.eta:.3f} is negative for α > asin√(2/3) = "
+                  f"{math.asin(math.sqrt(2 / 3)):.4f} rad (b/h > √2): the block cannot go on pivoting about the new "
+                  f"corner (its θ̇ would reverse and the old corner enter the floor); a squat block lands flat. "
+                  f"The library clamps η at 0 (a plastic landing): {same_instant} impact at t = {imp.time:.4f} s, "
+                  f"then rest")))
     return rows
 
 
