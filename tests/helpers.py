@@ -2,6 +2,8 @@
 
 import math
 
+import numpy as np
+
 import rocking as rk
 
 G = 9.81
@@ -32,3 +34,13 @@ def first_event(response, kind):
         if e.kind == kind:
             return e
     return None
+
+
+def on_grid(response, dt):
+    """(t, θ, u) of a response on the uniform grid k·dt: the extra rows saved at event instants
+    are dropped, and of two rows at one grid time the first (the state before the event) is kept."""
+    k = np.rint(response.t / dt)
+    on = response.t == k * dt
+    _, first = np.unique(k[on], return_index=True)
+    rows = np.flatnonzero(on)[first]
+    return response.t[rows], response.theta[rows], response.u[rows]

@@ -39,6 +39,8 @@ import numpy as np
 import pytest
 
 import rocking as rk
+
+from helpers import on_grid
 from oracles import closed_forms as cf
 from oracles.independent_solver import simulate_independent
 from rocking.excitation.record import GroundMotion
@@ -68,15 +70,6 @@ def _both(system, motion, *, duration=None, save_dt=0.01, impact="coulomb", norm
     return c, r
 
 
-def _on_grid(c, dt):
-    """The compiled samples on the uniform grid k·dt (the rows at event instants dropped)."""
-    k = np.rint(c.t / dt)
-    on = c.t == k * dt
-    _, first = np.unique(k[on], return_index=True)
-    rows = np.flatnonzero(on)[first]
-    return c.t[rows], c.theta[rows], c.u[rows]
-
-
 def _merge_settle_tails(events):
     """(time, kind, before, after) rows with every SETTLE's tail of STOP/SETTLE events within
     SETTLE_TAIL merged into it (the SETTLE keeps its time and takes the tail's final regime)."""
@@ -96,7 +89,7 @@ def _merge_settle_tails(events):
 def _assert_agree(c, r, *, dt=0.01, window=math.inf, time_tol=TIME_TOL):
     """θ, u on the grid and the events up to ``window`` (s); with no window, also the verdict.
     Returns the compared events (time, kind, before, after) of the compiled solver."""
-    tc, thc, uc = _on_grid(c, dt)
+    tc, thc, uc = on_grid(c, dt)
     n = min(tc.size, r.t.size)
     assert n > 0
     np.testing.assert_array_equal(tc[:n], r.t[:n])

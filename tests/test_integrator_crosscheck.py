@@ -22,6 +22,8 @@ import numpy as np
 import pytest
 
 import rocking as rk
+
+from helpers import on_grid
 from oracles import closed_forms as cf
 from rocking.io.records import read_record
 from rocking.solver.crosscheck import simulate_crosscheck
@@ -46,15 +48,6 @@ def _both(system, motion, *, duration=None, save_dt=0.01, impact="coulomb", grav
     return c, r
 
 
-def _on_grid(c, dt):
-    """The compiled samples on the uniform grid k·dt (the rows at event instants dropped)."""
-    k = np.rint(c.t / dt)
-    on = c.t == k * dt
-    _, first = np.unique(k[on], return_index=True)
-    rows = np.flatnonzero(on)[first]
-    return c.t[rows], c.theta[rows], c.u[rows]
-
-
 def _events(c, r, window):
     ec = [(e.time, e.kind, e.before, e.after) for e in c.events if e.time <= window]
     er = [e for e in r["event_regimes"] if e[0] <= window]
@@ -62,7 +55,7 @@ def _events(c, r, window):
 
 
 def _assert_agree(c, r, *, dt=0.01, window=WINDOW):
-    tc, thc, uc = _on_grid(c, dt)
+    tc, thc, uc = on_grid(c, dt)
     n = min(tc.size, r["t"].size)
     assert n > 0
     np.testing.assert_array_equal(tc[:n], r["t"][:n])
