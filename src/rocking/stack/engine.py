@@ -1,0 +1,674 @@
+"""The event-driven solver of a stack: DOP853 between events, guards located on its dense
+output, modes chosen by :func:`rocking.stack.modes.select_mode`, impacts by the same routine at
+velocity level (docs/theory/stack.md §5–6).
+
+State y = (z, ż, W_in, D_friction): 3N interface coordinates, their rates, the work done by
+the floor's d'Alembert forces and the energy dissipated by friction, J. Frozen coordinates
+have zero rate and acceleration, so they stay exactly where the mode put them.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..excitation.signal import LOCAL_SIZE, local_value
+from ..integrators import dop853
+from .kinematics import (
+    END_U,
+    P_BL,
+    P_BU,
+    P_CAN_SLIP,
+    P_HU,
+    P_INERTIA,
+    P_MASS,
+    P_MU_K,
+    P_MU_S,
+    P_OFFSET,
+    P_RESTITUTION,
+    end_gap,
+    energy,
+    forward,
+    kinetic_energy,
+    mass_and_forces,
+    relative_pose,
+)
+from .modes import (
+    ACCELERATION,
+    FLAT,
+    OPEN,
+    ROCK,
+    SELECT_OK,
+    VELOCITY,
+    corner_x,
+    flat_forces,
+    identify_ends,
+    reanchor,
+    select_mode,
+    solve_mode,
+)
+
+N_SUB = 4  # interior points of a step where the guards are sampled
+N_GUARD_SLOTS = 7  # per interface: anchor, other end, stick+/slip, stick−, overturn, edge, overlap
+(G_ANCHOR, G_OTHER, G_STICK_POS, G_STICK_NEG, G_OVERTURN, G_EDGE, G_OVERLAP) = range(N_GUARD_SLOTS)
+
+(STATUS_COMPLETED, STATUS_OVERTURNED, STATUS_MAX_EVENTS, STATUS_INCONSISTENT, STATUS_STEP_FAILED,
+ STATUS_STILL_MOVING) = range(6)
+
+# Saved sample: t, then per block X, Y, Θ, Ẋ, Ẏ, Θ̇, then per interface φ, slip s (upper centre
+# along the lower face from its start), normal state, tangential state; then E, W_in,
+# D_friction, D_impact.
+N_BLOCK_COLS = 6
+N_IFACE_COLS = 4
+N_TAIL = 4
+
+# Event record: t, interface, guard slot (−1 impact), normal state after, tangential state after,
+# kinetic energy lost (impacts), J.
+N_EVENT_FIELDS = 6
+EVENT_IMPACT = -1
+EVENT_START = -2
+
+# Summary per block: overturn time, peak |φ|, peak |slip|, final slip, lift-off time, first
+# rocking time, first sliding time, largest required friction ratio of its interface, total
+# slip path.
+(B_OVERTURN, B_PEAK_PHI, B_PEAK_SLIP, B_FINAL_SLIP, B_LIFTOFF, B_FIRST_ROCK, B_FIRST_SLIDE, B_MU_REQ,
+ B_SLIP_PATH, B_PEAK_ABS_THETA) = range(10)
+N_BLOCK_SUMMARY = 10
+
+
+@njit(cache=True)
+def _ground(loc, t):
+    return local_value(loc, 0, t), local_value(loc, LOCAL_SIZE, t)
+
+
+@njit(cache=True)
+def slip_of(P, ends, anchor, k, z):
+    """Relative sliding of block k on what it stands on, m: how far the contact point has moved
+    along the face from where it started (the anchor corner's displacement, which a rocking
+    motion about a stuck corner leaves unchanged and a re-anchoring at φ = 0 preserves)."""
+    e = anchor[k]
+    x = ends[k, e, 1]
+    if ends[k, e, 0] == END_U:
+        return z[3 * k] - (P[k, P_OFFSET] + x)
+    return (x - P[k, P_OFFSET]) - z[3 * k]
+
+
+@njit(cache=True)
+def evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, dy, lam):
+    """Right-hand side dy/dt of the current mode at (t, y); ``lam`` receives the contact forces
+    (Λ on the frozen coordinates). Returns False if the mode's equations are singular."""
+    n = P.shape[0]
+    nz = 3 * n
+    z = y[:nz]
+    zd = y[nz:2 * nz]
+    A = np.zeros((n, 2, nz))
+    beta = np.zeros((n, 2))
+    C = np.zeros((n, nz))
+    X = np.zeros((n, 2))
+    Xd = np.zeros((n, 2))
+    th = np.zeros(n)
+    thd = np.zeros(n)
+    M = np.zeros((nz, nz))
+    f = np.zeros(nz)
+    ah, av = _ground(loc, t)
+    forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, th, thd)
+    mass_and_forces(P, A, beta, C, ah, av, gravity, M, f)
+    zdd = np.zeros(nz)
+    ok = solve_mode(M, f, P, nstate, tstate, zdd, lam)
+    for i in range(nz):
+        dy[i] = zd[i]
+        dy[nz + i] = zdd[i]
+    p_in = 0.0
+    for k in range(n):
+        p_in -= P[k, P_MASS] * (ah * Xd[k, 0] + av * Xd[k, 1])
+    p_fric = 0.0
+    for k in range(n):
+        if nstate[k] >= ROCK and tstate[k] != 0 and P[k, P_CAN_SLIP] > 0.5:
+            p_fric += P[k, P_MU_K] * lam[3 * k + 2] * tstate[k] * zd[3 * k]
+    dy[2 * nz] = p_in
+    dy[2 * nz + 1] = p_fric
+    return ok
+
+
+@njit(cache=True)
+def guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g):
+    """Guard values (N × N_GUARD_SLOTS, flattened), positive while the mode holds."""
+    n = P.shape[0]
+    nz = 3 * n
+    dy = np.empty(2 * nz + 2)
+    lam = np.zeros(nz)
+    evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, dy, lam)
+    z = y[:nz]
+    zd = y[nz:2 * nz]
+    for k in range(n):
+        i = 3 * k
+        b = k * N_GUARD_SLOTS
+        for j in range(N_GUARD_SLOTS):
+            g[b + j] = 1.0
+        e_other = 1 - anchor[k]
+        if nstate[k] == FLAT:
+            na, no = flat_forces(P, ends, anchor, k, z, lam)
+            g[b + G_ANCHOR] = na
+            g[b + G_OTHER] = no
+        elif nstate[k] == ROCK:
+            g[b + G_ANCHOR] = lam[i + 2]
+            g[b + G_OTHER] = end_gap(P, ends, anchor, k, z, zd, e_other)[0]
+        else:
+            g[b + G_ANCHOR] = z[i + 2]
+            g[b + G_OTHER] = end_gap(P, ends, anchor, k, z, zd, e_other)[0]
+        if nstate[k] >= ROCK and P[k, P_CAN_SLIP] > 0.5:
+            if tstate[k] == 0:
+                g[b + G_STICK_POS] = P[k, P_MU_S] * lam[i + 2] - lam[i]
+                g[b + G_STICK_NEG] = P[k, P_MU_S] * lam[i + 2] + lam[i]
+            else:
+                g[b + G_STICK_POS] = tstate[k] * zd[i]
+        g[b + G_OVERTURN] = 0.5 * math.pi - abs(z[i + 1])
+        if k >= 1:
+            xl, xr = corner_x(P, ends, anchor, k, z)
+            bl = P[k, P_BL]
+            g[b + G_OVERLAP] = min(xr, bl) - max(xl, -bl)
+            if nstate[k] == FLAT and tstate[k] != 0:
+                sl = 1.0 if ends[k, 0, 0] == END_U else -1.0
+                sr = 1.0 if ends[k, 1, 0] == END_U else -1.0
+                g[b + G_EDGE] = min(sl * (xl + bl), sr * (bl - xr))
+
+
+@njit(cache=True)
+def _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, out):
+    lam = np.zeros(3 * P.shape[0])
+    evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, out, lam)
+
+
+@njit(cache=True)
+def _step(P, ends, anchor, nstate, tstate, t, y, h, loc, gravity, K, y_new, rtol, atol, n_ctrl):
+    work = np.empty(y.shape[0])
+    for stage in range(1, dop853.N_STAGES):
+        dop853.stage_input(y, K, h, stage, work)
+        _rhs(P, ends, anchor, nstate, tstate, t + dop853.C[stage] * h, work, loc, gravity, K[stage])
+    dop853.advance(y, K, h, y_new)
+    _rhs(P, ends, anchor, nstate, tstate, t + h, y_new, loc, gravity, K[dop853.FSAL])
+    return dop853.error_norm(y, y_new, K, h, rtol, atol, n_ctrl)
+
+
+@njit(cache=True)
+def _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, h, loc, gravity, K, F):
+    work = np.empty(y.shape[0])
+    for j in range(dop853.N_EXTRA):
+        dop853.extra_stage_input(y, K, h, j, work)
+        _rhs(P, ends, anchor, nstate, tstate, t + dop853.C_EXTRA[j] * h, work, loc, gravity,
+             K[dop853.FSAL + 1 + j])
+    dop853.prepare_dense(y, y_new, K, h, F)
+
+
+@njit(cache=True)
+def _housner_couple(P, ends, anchor, k, z, zd, extra):
+    """The restitution couple of an impact on interface k (now anchored at the impacting end):
+    (r − r_H)·I_O·φ̇⁻ on φ_k, so that with the block below held φ̇⁺ = r·φ̇⁻; r_H is the
+    plastic value of block k alone (docs/theory/stack.md §6)."""
+    r = P[k, P_RESTITUTION]
+    for i in range(extra.shape[0]):
+        extra[i] = 0.0
+    if math.isnan(r):
+        return
+    i = 3 * k
+    hu = P[k, P_HU]
+    # contact points along the upper block's bottom face (its own frame, centre at 0), at φ = 0
+    rx, _, _, _ = relative_pose(P, ends, anchor, k, z[i], z[i + 1], z[i + 2], 0.0, 0.0, 0.0)
+    xs = np.empty(2)
+    for e in range(2):
+        x = ends[k, e, 1]
+        xs[e] = x if ends[k, e, 0] == END_U else x - rx
+    x_new = xs[anchor[k]]
+    x_old = xs[1 - anchor[k]]
+    m, J = P[k, P_MASS], P[k, P_INERTIA]
+    i_o = J + m * (x_new * x_new + hu * hu)
+    r_h = (J + m * (x_new * x_old + hu * hu)) / i_o
+    extra[i + 1] = (r - r_h) * i_o * zd[i + 1]
+
+
+@njit(cache=True)
+def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravity, rtol, atol, max_step,
+              save_dt, max_events, rest_velocity):
+    """Run the stack from rest (or y0) to t_end. Returns (status, t_stop, samples, events,
+    block summary, ends, anchor)."""
+    n = P.shape[0]
+    nz = 3 * n
+    ny = 2 * nz + 2
+    ends = ends0.copy()
+    anchor = anchor0.copy()
+    nstate = np.full(n, FLAT, dtype=np.int64)
+    tstate = np.zeros(n, dtype=np.int64)
+    geo = np.full(n, FLAT, dtype=np.int64)
+    y = y0.copy()
+    y_new = np.empty(ny)
+    K = np.empty((dop853.N_K, ny))
+    F = np.empty((dop853.INTERPOLATOR_POWER, ny))
+    ng = n * N_GUARD_SLOTS
+    g0 = np.empty(ng)
+    g1 = np.empty(ng)
+    gm = np.empty(ng)
+    ym = np.empty(ny)
+    lam = np.zeros(nz)
+    x_sel = np.zeros(nz)
+    lam_sel = np.zeros(nz)
+    extra = np.zeros(nz)
+    n_grid = int(math.floor(t_end / save_dt + 1e-9)) + 1
+    cap = n_grid + 2 * max_events + 4
+    ncol = 1 + N_BLOCK_COLS * n + N_IFACE_COLS * n + N_TAIL
+    samples = np.empty((cap, ncol))
+    events = np.empty((max_events + 2, N_EVENT_FIELDS))
+    summ = np.full((n, N_BLOCK_SUMMARY), np.nan)
+    for k in range(n):
+        summ[k, B_PEAK_PHI] = 0.0
+        summ[k, B_PEAK_SLIP] = 0.0
+        summ[k, B_MU_REQ] = 0.0
+        summ[k, B_SLIP_PATH] = 0.0
+        summ[k, B_PEAK_ABS_THETA] = 0.0
+    # where each block's centre starts along the face below, for the slip measure
+    slip0 = np.zeros(n)
+    for k in range(n):
+        rx, _, _, _ = relative_pose(P, ends, anchor, k, y[3 * k], y[3 * k + 1], y[3 * k + 2], 0.0, 0.0, 0.0)
+        slip0[k] = rx
+    d_impact = 0.0
+    n_out = 0
+    n_ev = 0
+    next_grid = 0
+    status = STATUS_COMPLETED
+    weight = 0.0
+    for k in range(n):
+        weight += P[k, P_MASS] * gravity
+    tol_force = 1e-10 * weight
+    tol_rate = 1e-12
+    nb = breakpoints.shape[0]
+    ib = 0
+    t = 0.0
+    loc = pieces[0]
+    # the starting mode
+    ah, av = _ground(loc, t)
+    zv = y[:nz].copy()
+    zdv = y[nz:2 * nz].copy()
+    if select_mode(ACCELERATION, P, ends, anchor, geo, zv, zdv, ah, av, gravity, extra, nstate, tstate, -1, 0,
+                   tol_force, tol_rate, x_sel, lam_sel) != SELECT_OK:
+        status = STATUS_INCONSISTENT
+    y[:nz] = zv
+    y[nz:2 * nz] = zdv
+    e0 = _energy_of(P, ends, anchor, y, gravity)
+    h = min(max_step, 1e-3)
+    n_ctrl = 2 * nz
+    _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0])
+    while status == STATUS_COMPLETED and t < t_end:
+        # rest after the motion: nothing can move any more
+        if t >= t_settle:
+            at_rest = True
+            for k in range(n):
+                if nstate[k] != FLAT or tstate[k] != 0:
+                    at_rest = False
+            if at_rest:
+                break
+        t_lim = t_end
+        while ib < nb and breakpoints[ib] <= t:
+            ib += 1
+            loc = pieces[ib]
+            _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0])
+        if ib < nb:
+            t_lim = min(t_lim, breakpoints[ib])
+        if t_settle > t and t_settle < t_lim:
+            t_lim = t_settle
+        hs = min(h, max_step, t_lim - t)
+        if hs <= 1e-15 * max(1.0, t):
+            t = t_lim
+            continue
+        err = _step(P, ends, anchor, nstate, tstate, t, y, hs, loc, gravity, K, y_new, rtol, atol, n_ctrl)
+        if not (err <= 1.0) or not math.isfinite(err):
+            h = hs * max(0.2, 0.9 * (err ** -0.125) if math.isfinite(err) and err > 0 else 0.2)
+            if h < 1e-14:
+                status = STATUS_STEP_FAILED
+            continue
+        # accepted: look for guard crossings inside the step, also where a guard dips below zero
+        # and comes back within the step (a brief slip of a sine pulse's crest): the guards are
+        # sampled at N_SUB interior points of the dense output
+        _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, hs, loc, gravity, K, F)
+        have_dense = True
+        guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0)
+        first = -1
+        x_first = 2.0
+        x_lo = 0.0
+        for sub in range(1, N_SUB + 1):
+            x_hi = sub / N_SUB
+            if sub == N_SUB:
+                guards(P, ends, anchor, nstate, tstate, t + hs, y_new, loc, gravity, g1)
+            else:
+                dop853.dense(y, F, x_hi, ym)
+                guards(P, ends, anchor, nstate, tstate, t + x_hi * hs, ym, loc, gravity, g1)
+            for j in range(ng):
+                if g0[j] > 0.0 and g1[j] <= 0.0:
+                    xr = _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_lo, x_hi,
+                                 g0[j], g1[j], ym, gm)
+                    if xr < x_first:
+                        x_first = xr
+                        first = j
+            if first >= 0:
+                break
+            for j in range(ng):
+                g0[j] = g1[j]
+            x_lo = x_hi
+        if first >= 0:
+            he = x_first * hs
+            if he > 0.0:
+                # an 8th-order step to the event, not the interpolant
+                _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0])
+                _step(P, ends, anchor, nstate, tstate, t, y, he, loc, gravity, K, y_new, rtol, atol, n_ctrl)
+            else:
+                y_new[:] = y
+            if next_grid < n_grid:
+                n_out, next_grid = _save_grid(P, ends, anchor, nstate, tstate, t, y, hs, F, have_dense, K, loc,
+                                              gravity, save_dt, next_grid, n_grid, samples, n_out, cap, slip0,
+                                              d_impact, y_new, t + he)
+            t = t + he
+            y[:] = y_new
+            _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam)
+            k_ev = first // N_GUARD_SLOTS
+            slot = first - k_ev * N_GUARD_SLOTS
+            status, d_impact, n_ev = _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k_ev,
+                                                   slot, tol_force, tol_rate, rest_velocity, extra, x_sel, lam_sel,
+                                                   events, n_ev, d_impact, summ)
+            if n_ev >= max_events and status == STATUS_COMPLETED:
+                status = STATUS_MAX_EVENTS
+            _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0])
+            _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam)
+            if n_out < cap:
+                _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, n_out)
+                n_out += 1
+            h = max(hs, 1e-6)
+            continue
+        if next_grid < n_grid:
+            if not have_dense:
+                _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, hs, loc, gravity, K, F)
+            n_out, next_grid = _save_grid(P, ends, anchor, nstate, tstate, t, y, hs, F, True, K, loc, gravity,
+                                          save_dt, next_grid, n_grid, samples, n_out, cap, slip0, d_impact, y_new,
+                                          t + hs)
+        t = t + hs
+        y[:] = y_new
+        K[0, :] = K[dop853.FSAL, :]
+        _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam)
+        fac = 0.9 * err ** -0.125 if err > 0 else 10.0
+        h = hs * min(10.0, max(0.2, fac))
+    if status == STATUS_COMPLETED and t >= t_end:
+        for k in range(n):
+            if nstate[k] != FLAT or tstate[k] != 0:
+                status = STATUS_STILL_MOVING
+    if n_out < cap:
+        _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, n_out)
+        n_out += 1
+    for k in range(n):
+        summ[k, B_FINAL_SLIP] = slip_of(P, ends, anchor, k, y[:nz])
+    return status, t, samples[:n_out], events[:n_ev], summ, e0
+
+
+@njit(cache=True)
+def _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, hi, glo, ghi, ym, gm):
+    """Fraction of the step where guard j first reaches zero in [lo, hi], given g(lo) = glo > 0
+    ≥ ghi = g(hi) (Illinois method on the dense output)."""
+    side = 0
+    for it in range(200):
+        xm = (lo * ghi - hi * glo) / (ghi - glo)
+        if not (lo < xm < hi):
+            xm = 0.5 * (lo + hi)
+        dop853.dense(y, F, xm, ym)
+        guards(P, ends, anchor, nstate, tstate, t + xm * hs, ym, loc, gravity, gm)
+        gv = gm[j]
+        if gv > 0.0:
+            lo, glo = xm, gv
+            if side == 1:
+                ghi *= 0.5
+            side = 1
+        else:
+            hi, ghi = xm, gv
+            if side == -1:
+                glo *= 0.5
+            side = -1
+        if (hi - lo) * hs < 1e-13:
+            break
+    return hi
+
+
+@njit(cache=True)
+def _energy_of(P, ends, anchor, y, gravity):
+    n = P.shape[0]
+    nz = 3 * n
+    A = np.zeros((n, 2, nz))
+    beta = np.zeros((n, 2))
+    C = np.zeros((n, nz))
+    X = np.zeros((n, 2))
+    Xd = np.zeros((n, 2))
+    th = np.zeros(n)
+    thd = np.zeros(n)
+    forward(P, ends, anchor, y[:nz], y[nz:2 * nz], A, beta, C, X, Xd, th, thd)
+    return energy(P, X, Xd, thd, gravity)
+
+
+@njit(cache=True)
+def _kinetic_of(P, ends, anchor, z, zd):
+    n = P.shape[0]
+    nz = 3 * n
+    A = np.zeros((n, 2, nz))
+    beta = np.zeros((n, 2))
+    C = np.zeros((n, nz))
+    X = np.zeros((n, 2))
+    Xd = np.zeros((n, 2))
+    th = np.zeros(n)
+    thd = np.zeros(n)
+    forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, th, thd)
+    return kinetic_energy(P, Xd, thd)
+
+
+@njit(cache=True)
+def _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam):
+    n = P.shape[0]
+    nz = 3 * n
+    theta = 0.0
+    for k in range(n):
+        i = 3 * k
+        phi = y[i + 1]
+        theta += phi
+        if abs(phi) > summ[k, B_PEAK_PHI]:
+            summ[k, B_PEAK_PHI] = abs(phi)
+        if abs(theta) > summ[k, B_PEAK_ABS_THETA]:
+            summ[k, B_PEAK_ABS_THETA] = abs(theta)
+        s = slip_of(P, ends, anchor, k, y[:nz])
+        if abs(s) > summ[k, B_PEAK_SLIP]:
+            summ[k, B_PEAK_SLIP] = abs(s)
+        if nstate[k] == OPEN and math.isnan(summ[k, B_LIFTOFF]):
+            summ[k, B_LIFTOFF] = t
+        if nstate[k] == ROCK and math.isnan(summ[k, B_FIRST_ROCK]):
+            summ[k, B_FIRST_ROCK] = t
+        if nstate[k] >= ROCK and tstate[k] != 0 and math.isnan(summ[k, B_FIRST_SLIDE]):
+            summ[k, B_FIRST_SLIDE] = t
+
+
+@njit(cache=True)
+def _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, row):
+    n = P.shape[0]
+    nz = 3 * n
+    A = np.zeros((n, 2, nz))
+    beta = np.zeros((n, 2))
+    C = np.zeros((n, nz))
+    X = np.zeros((n, 2))
+    Xd = np.zeros((n, 2))
+    th = np.zeros(n)
+    thd = np.zeros(n)
+    forward(P, ends, anchor, y[:nz], y[nz:2 * nz], A, beta, C, X, Xd, th, thd)
+    samples[row, 0] = t
+    c = 1
+    for k in range(n):
+        samples[row, c], samples[row, c + 1], samples[row, c + 2] = X[k, 0], X[k, 1], th[k]
+        samples[row, c + 3], samples[row, c + 4], samples[row, c + 5] = Xd[k, 0], Xd[k, 1], thd[k]
+        c += N_BLOCK_COLS
+    for k in range(n):
+        i = 3 * k
+        samples[row, c] = y[i + 1]
+        samples[row, c + 1] = slip_of(P, ends, anchor, k, y[:nz])
+        samples[row, c + 2] = nstate[k]
+        samples[row, c + 3] = tstate[k]
+        c += N_IFACE_COLS
+    samples[row, c] = energy(P, X, Xd, thd, gravity)
+    samples[row, c + 1] = y[2 * nz]
+    samples[row, c + 2] = y[2 * nz + 1]
+    samples[row, c + 3] = d_impact
+
+
+@njit(cache=True)
+def _save_grid(P, ends, anchor, nstate, tstate, t, y, h, F, dense_ok, K, loc, gravity, save_dt, next_grid, n_grid,
+               samples, n_out, cap, slip0, d_impact, y_end, t_stop):
+    """Save the grid points in [t, t_stop] from the dense output of the step (t, t + h)."""
+    ym = np.empty(y.shape[0])
+    while next_grid < n_grid and n_out < cap:
+        tg = next_grid * save_dt
+        if tg > t_stop + 1e-15 * max(1.0, t_stop):
+            break
+        if tg < t:
+            next_grid += 1
+            continue
+        x = (tg - t) / h if h > 0.0 else 1.0
+        if dense_ok:
+            dop853.dense(y, F, x, ym)
+        elif x >= 1.0:
+            ym[:] = y_end
+        else:
+            ym[:] = y
+        _save_row(P, ends, anchor, nstate, tstate, tg, ym, gravity, slip0, d_impact, samples, n_out)
+        n_out += 1
+        next_grid += 1
+    return n_out, next_grid
+
+
+@njit(cache=True)
+def _record(events, n_ev, t, k, slot, nst, tst, de):
+    if n_ev < events.shape[0]:
+        events[n_ev, 0] = t
+        events[n_ev, 1] = k
+        events[n_ev, 2] = slot
+        events[n_ev, 3] = nst
+        events[n_ev, 4] = tst
+        events[n_ev, 5] = de
+    return n_ev + 1
+
+
+@njit(cache=True)
+def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, slot, tol_force, tol_rate,
+                  rest_velocity, extra, x_sel, lam_sel, events, n_ev, d_impact, summ):
+    """Apply the event of guard ``slot`` on interface k at time t (y is the state there).
+    Returns (status, impact dissipation so far, number of events)."""
+    n = P.shape[0]
+    nz = 3 * n
+    z = y[:nz].copy()
+    zd = y[nz:2 * nz].copy()
+    i = 3 * k
+    ah, av = _ground(loc, t)
+    if slot == G_OVERTURN or slot == G_OVERLAP:
+        summ[k, B_OVERTURN] = t
+        n_ev = _record(events, n_ev, t, k, slot, nstate[k], tstate[k], 0.0)
+        return STATUS_OVERTURNED, d_impact, n_ev
+    for j in range(n):
+        geo[j] = nstate[j]
+    impact = (slot == G_OTHER and nstate[k] != FLAT) or (slot == G_ANCHOR and nstate[k] == OPEN)
+    if impact:
+        e_hit = anchor[k] if slot == G_ANCHOR else 1 - anchor[k]
+        if e_hit != anchor[k]:
+            reanchor(P, ends, anchor, k, z, zd, e_hit, ends[k, e_hit, 0], ends[k, e_hit, 1])
+        z[i + 2] = 0.0
+        other_gap = end_gap(P, ends, anchor, k, z, zd, 1 - anchor[k])[0]
+        if nstate[k] == ROCK or abs(other_gap) <= 1e-9 * (P[k, P_HU] + P[k, P_BU]):
+            geo[k] = FLAT
+            z[i + 1] = 0.0
+            _housner_couple(P, ends, anchor, k, z, zd, extra)
+        else:
+            geo[k] = ROCK
+            for j in range(nz):
+                extra[j] = 0.0
+        t_before = _kinetic_of(P, ends, anchor, z, zd)
+        z_pre, zd_pre, ends_pre, anchor_pre = z.copy(), zd.copy(), ends.copy(), anchor.copy()
+        code = select_mode(VELOCITY, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, -1, 0,
+                           tol_force, tol_rate, x_sel, lam_sel)
+        if code != SELECT_OK:
+            n_ev = _record(events, n_ev, t, k, EVENT_IMPACT, -1, 0, 0.0)
+            return STATUS_INCONSISTENT, d_impact, n_ev
+        # rest: an impact that leaves almost no rotation lands the block flat (ends Zeno sequences)
+        if geo[k] == FLAT and nstate[k] == ROCK and abs(x_sel[i + 1]) < rest_velocity:
+            z[:] = z_pre
+            zd[:] = zd_pre
+            ends[:, :, :] = ends_pre
+            anchor[:] = anchor_pre
+            for j in range(nz):
+                extra[j] = 0.0
+            code = select_mode(VELOCITY, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, -1, 0,
+                               tol_force, tol_rate, x_sel, lam_sel, k)
+            if code != SELECT_OK:
+                n_ev = _record(events, n_ev, t, k, EVENT_IMPACT, -1, 0, 0.0)
+                return STATUS_INCONSISTENT, d_impact, n_ev
+        for j in range(nz):
+            zd[j] = x_sel[j]
+        t_after = _kinetic_of(P, ends, anchor, z, zd)
+        d_impact += t_before - t_after
+        for j in range(n):
+            geo[j] = nstate[j]
+        for j in range(n):
+            # exact zeros for what the impact froze
+            if nstate[j] >= ROCK:
+                zd[3 * j + 2] = 0.0
+                if tstate[j] == 0:
+                    zd[3 * j] = 0.0
+            if nstate[j] == FLAT:
+                zd[3 * j + 1] = 0.0
+        n_ev = _record(events, n_ev, t, k, EVENT_IMPACT, nstate[k], tstate[k], t_before - t_after)
+        veto_k, veto_kind = -1, 0
+    else:
+        veto_k, veto_kind = -1, 0
+        if slot == G_ANCHOR:
+            veto_k, veto_kind = k, 0
+        elif slot == G_OTHER:
+            veto_k, veto_kind = k, 1
+        elif slot == G_STICK_POS or slot == G_STICK_NEG:
+            if tstate[k] == 0:
+                veto_k, veto_kind = k, 2
+            else:
+                zd[i] = 0.0  # the slip stops
+        elif slot == G_EDGE:
+            ends_new = np.empty((2, 2))
+            identify_ends(P, ends, anchor, k, z, tstate[k], 1e-12, ends_new)
+            for e in range(2):
+                if ends_new[e, 0] != ends[k, e, 0]:
+                    if e == anchor[k]:
+                        reanchor(P, ends, anchor, k, z, zd, e, ends_new[e, 0], ends_new[e, 1])
+                    else:
+                        ends[k, e, 0] = ends_new[e, 0]
+                        ends[k, e, 1] = ends_new[e, 1]
+            for j in range(nz):
+                y[j] = z[j]
+                y[nz + j] = zd[j]
+            n_ev = _record(events, n_ev, t, k, slot, nstate[k], tstate[k], 0.0)
+            return 0, d_impact, n_ev
+    # an interface that lands flat or stops slipping: which corners are its ends now
+    for j in range(1, n):
+        if geo[j] == FLAT:
+            ends_new = np.empty((2, 2))
+            identify_ends(P, ends, anchor, j, z, 0, 1e-12, ends_new)
+            for e in range(2):
+                if ends_new[e, 0] != ends[j, e, 0]:
+                    if e == anchor[j]:
+                        reanchor(P, ends, anchor, j, z, zd, e, ends_new[e, 0], ends_new[e, 1])
+                    else:
+                        ends[j, e, 0] = ends_new[e, 0]
+                        ends[j, e, 1] = ends_new[e, 1]
+    code = select_mode(ACCELERATION, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, veto_k,
+                       veto_kind, tol_force, tol_rate, x_sel, lam_sel)
+    for j in range(nz):
+        y[j] = z[j]
+        y[nz + j] = zd[j]
+    if not impact:
+        n_ev = _record(events, n_ev, t, k, slot, nstate[k], tstate[k], 0.0)
+    if code != SELECT_OK:
+        return STATUS_INCONSISTENT, d_impact, n_ev
+    return 0, d_impact, n_ev

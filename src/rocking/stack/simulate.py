@@ -1,0 +1,195 @@
+"""Run a stack: validation, packing for the compiled engine, and the response (issue 11).
+
+Example
+-------
+>>> import rocking
+>>> from rocking.stack import Block, Interface, Stack, simulate_stack
+>>> stack = Stack(blocks=(Block(width=0.3, height=1.2, mass=100.0),), interfaces=(Interface(),))
+>>> r = simulate_stack(stack, rocking.SinePulse(amplitude=6.0, frequency=1.0))
+>>> r.blocks[0]["overturned"]
+True
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..excitation.base import AbstractMotion
+from ..simulation import Options, _as_options, _breakpoints
+from ..solver.compiled import _piece_table
+from . import engine
+from .kinematics import (
+    END_L,
+    END_U,
+    N_P,
+    P_BL,
+    P_BU,
+    P_CAN_SLIP,
+    P_FLOOR,
+    P_HL,
+    P_HU,
+    P_INERTIA,
+    P_MASS,
+    P_MU_K,
+    P_MU_S,
+    P_OFFSET,
+    P_RESTITUTION,
+)
+from .model import Stack
+
+STATUS_NAMES = ("completed", "overturned", "max_events", "inconsistent", "step_failed", "still_moving")
+_FLOOR_HALF_WIDTH = 1e300  # the floor's face has no end
+
+
+def pack(stack: Stack) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(P, ends, anchor, z0): the parameter table, the corners that make each interface's ends,
+    the anchors (left ends) and the interface coordinates at rest."""
+    n = stack.n
+    P = np.zeros((n, N_P))
+    ends = np.zeros((n, 2, 2))
+    anchor = np.zeros(n, dtype=np.int64)
+    z0 = np.zeros(3 * n)
+    for k, (block, iface) in enumerate(zip(stack.blocks, stack.interfaces)):
+        lower = stack.blocks[k - 1] if k > 0 else None
+        P[k, P_MASS] = block.mass
+        P[k, P_INERTIA] = block.centroidal_inertia
+        P[k, P_HU] = 0.5 * block.height
+        P[k, P_HL] = 0.5 * lower.height if lower is not None else 0.0
+        P[k, P_BU] = 0.5 * block.width
+        P[k, P_BL] = 0.5 * lower.width if lower is not None else _FLOOR_HALF_WIDTH
+        P[k, P_OFFSET] = block.offset
+        P[k, P_FLOOR] = 1.0 if k == 0 else 0.0
+        if iface.friction is not None:
+            P[k, P_MU_S] = iface.friction.mu_s
+            P[k, P_MU_K] = iface.friction.mu_k
+            P[k, P_CAN_SLIP] = 1.0
+        P[k, P_RESTITUTION] = math.nan if iface.restitution is None else float(iface.restitution)
+        bu, bl, o = P[k, P_BU], P[k, P_BL], block.offset
+        # each end of the overlap is the inner of the two corners (a tie: the upper one)
+        ends[k, 0] = (END_U, -bu) if o - bu >= -bl else (END_L, -bl)
+        ends[k, 1] = (END_U, bu) if o + bu <= bl else (END_L, bl)
+        # anchor at the left end: a is that corner's position along the face it touches
+        z0[3 * k] = o - bu if ends[k, 0, 0] == END_U else -bl - o
+    return P, ends, anchor, z0
+
+
+@dataclass(frozen=True)
+class StackResponse:
+    """What a stack run gives. Time series on the saved grid (plus event instants):
+
+    * ``t`` (s); ``pose`` (n, N, 3): X, Y, Θ of each block's centre in the floor's frame
+      (m, m, rad; Θ positive clockwise, tilting towards +x); ``velocity`` (n, N, 3);
+    * ``rotation`` (n, N): φ, each block's rotation relative to the block below, rad;
+      ``sliding`` (n, N): its centre's displacement along the face below from where it
+      started, m; ``normal_state``/``tangential_state`` (n, N): 0 open, 1 rocking, 2 flat;
+      0 stuck, ±1 slipping towards ±x;
+    * ``energy``, ``input_work``, ``friction_loss``, ``impact_loss`` (n,), J.
+    """
+
+    stack: Stack
+    status: str
+    end_time: float
+    t: np.ndarray
+    pose: np.ndarray
+    velocity: np.ndarray
+    rotation: np.ndarray
+    sliding: np.ndarray
+    normal_state: np.ndarray
+    tangential_state: np.ndarray
+    energy: np.ndarray
+    input_work: np.ndarray
+    friction_loss: np.ndarray
+    impact_loss: np.ndarray
+    events: np.ndarray
+    blocks: tuple[dict, ...]
+    initial_energy: float
+
+    @property
+    def overturned(self) -> bool:
+        return any(b["overturned"] for b in self.blocks)
+
+    def balance_error(self) -> np.ndarray:
+        """E(t) − E(0) − W_in + D_friction + D_impact, J (zero up to the solver's accuracy)."""
+        return self.energy - self.initial_energy - self.input_work + self.friction_loss + self.impact_loss
+
+
+def simulate_stack(
+    stack: Stack,
+    motion: AbstractMotion,
+    *,
+    duration: float | None = None,
+    options: Options | Mapping = Options(),
+) -> StackResponse:
+    """Simulate a stack of blocks on a floor moving with ``motion`` (see :class:`StackResponse`).
+
+    Without ``duration`` the run lasts the motion and then, with the floor still, until every
+    interface is flat and stuck, for at most ``options.free_time_limit`` more seconds."""
+    if not isinstance(stack, Stack):
+        raise TypeError(f"stack must be a rocking.stack.Stack, got {type(stack).__name__}")
+    if not isinstance(motion, AbstractMotion):
+        raise TypeError(f"motion must be a floor motion, got {type(motion).__name__}")
+    options = _as_options(options)
+    motion_end = float(motion.duration)
+    if duration is None:
+        t_end, t_settle = motion_end + float(options.free_time_limit), motion_end
+    else:
+        t_end, t_settle = float(duration), math.inf
+        if not (math.isfinite(t_end) and t_end > 0):
+            raise ValueError(f"simulation.duration must be a positive number (s), got {duration!r}")
+    save_dt = options.save_dt or (float(getattr(motion, "dt", 0.0) or 0.0) or 0.01)
+    P, ends, anchor, z0 = pack(stack)
+    n = stack.n
+    y0 = np.zeros(6 * n + 2)
+    y0[: 3 * n] = z0
+    sig_h, sig_v = motion.signal(), motion.vertical_signal()
+    bp = _breakpoints(motion, t_end)
+    pieces = _piece_table((sig_h.kind, sig_h.params, sig_h.time, sig_h.values),
+                          (sig_v.kind, sig_v.params, sig_v.time, sig_v.values), bp, 0.0, t_end)
+    status, t_stop, samples, events, summ, e0 = engine.integrate(
+        P, ends, anchor, pieces, bp, t_end, t_settle, y0, options.gravity, options.rtol, options.atol,
+        options.max_step, save_dt, int(options.max_events), options.rest_velocity,
+    )
+    return _response(stack, STATUS_NAMES[status], t_stop, samples, events, summ, e0)
+
+
+def _response(stack, status, t_stop, samples, events, summ, e0) -> StackResponse:
+    n = stack.n
+    t = samples[:, 0]
+    order = np.argsort(t, kind="stable")
+    samples = samples[order]
+    t = samples[:, 0]
+    blk = samples[:, 1 : 1 + engine.N_BLOCK_COLS * n].reshape(len(t), n, engine.N_BLOCK_COLS)
+    c0 = 1 + engine.N_BLOCK_COLS * n
+    ifc = samples[:, c0 : c0 + engine.N_IFACE_COLS * n].reshape(len(t), n, engine.N_IFACE_COLS)
+    tail = samples[:, c0 + engine.N_IFACE_COLS * n :]
+    blocks = []
+    for k, name in enumerate(stack.names):
+        s = summ[k]
+        overturned = bool(np.isfinite(s[engine.B_OVERTURN]))
+        blocks.append({
+            "name": name,
+            "overturned": overturned,
+            "overturn_time": float(s[engine.B_OVERTURN]) if overturned else None,
+            "peak_rotation": float(s[engine.B_PEAK_PHI]),
+            "peak_absolute_rotation": float(s[engine.B_PEAK_ABS_THETA]),
+            "peak_sliding": float(s[engine.B_PEAK_SLIP]),
+            "residual_sliding": float(s[engine.B_FINAL_SLIP]),
+            "lifted_off_time": _opt(s[engine.B_LIFTOFF]),
+            "first_rocking_time": _opt(s[engine.B_FIRST_ROCK]),
+            "first_sliding_time": _opt(s[engine.B_FIRST_SLIDE]),
+        })
+    return StackResponse(
+        stack=stack, status=status, end_time=float(t_stop), t=t, pose=blk[:, :, :3].copy(),
+        velocity=blk[:, :, 3:].copy(), rotation=ifc[:, :, 0].copy(), sliding=ifc[:, :, 1].copy(),
+        normal_state=ifc[:, :, 2].astype(int), tangential_state=ifc[:, :, 3].astype(int),
+        energy=tail[:, 0].copy(), input_work=tail[:, 1].copy(), friction_loss=tail[:, 2].copy(),
+        impact_loss=tail[:, 3].copy(), events=events, blocks=tuple(blocks), initial_energy=float(e0),
+    )
+
+
+def _opt(v: float) -> float | None:
+    return None if not np.isfinite(v) else float(v)
