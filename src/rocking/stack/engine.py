@@ -68,7 +68,7 @@ N_TAIL = 4
 # kinetic energy lost (impacts), J.
 N_EVENT_FIELDS = 6
 EVENT_IMPACT = -1
-EVENT_START = -2
+EVENT_FOLLOWS = -2  # another interface's mode changed at an event
 
 # Summary per block: overturn time, peak |φ|, peak |slip|, final slip, lift-off time, first
 # rocking time, first sliding time, largest required friction ratio of its interface, total
@@ -296,7 +296,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
     y[nz:2 * nz] = zdv
     e0 = _energy_of(P, ends, anchor, y, gravity)
     h = min(max_step, 1e-3)
-    n_ctrl = 2 * nz
+    n_ctrl = ny  # the energy ledger too: it is checked to 1e-9
     _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0])
     while status == STATUS_COMPLETED and t < t_end:
         # rest after the motion: nothing can move any more
@@ -343,6 +343,22 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 dop853.dense(y, F, x_hi, ym)
                 guards(P, ends, anchor, nstate, tstate, t + x_hi * hs, ym, loc, gravity, g1)
             for j in range(ng):
+                if sub == 1 and g0[j] <= 0.0 and g1[j] <= 0.0:
+                    # a guard that starts at zero (the gap of the corner an impact just left):
+                    # it may open and close again within the first sub-step (a Zeno-like
+                    # sequence), so probe it at geometrically closer points
+                    xp = x_hi
+                    for probe in range(24):
+                        xp *= 0.5
+                        dop853.dense(y, F, xp, ym)
+                        guards(P, ends, anchor, nstate, tstate, t + xp * hs, ym, loc, gravity, gm)
+                        if gm[j] > 0.0:
+                            xr = _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, xp, x_hi,
+                                         gm[j], g1[j], ym, gm)
+                            if xr < x_first:
+                                x_first = xr
+                                first = j
+                            break
                 if g0[j] > 0.0 and g1[j] <= 0.0:
                     xr = _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_lo, x_hi,
                                  g0[j], g1[j], ym, gm)
@@ -404,7 +420,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
         n_out += 1
     for k in range(n):
         summ[k, B_FINAL_SLIP] = slip_of(P, ends, anchor, k, y[:nz])
-    return status, t, samples[:n_out], events[:n_ev], summ, e0
+    return status, t, samples[:n_out], events[:n_ev], summ, e0, y, ends, anchor, nstate, tstate
 
 
 @njit(cache=True)
@@ -571,6 +587,8 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
         summ[k, B_OVERTURN] = t
         n_ev = _record(events, n_ev, t, k, slot, nstate[k], tstate[k], 0.0)
         return STATUS_OVERTURNED, d_impact, n_ev
+    n_before = nstate.copy()
+    t_before_state = tstate.copy()
     for j in range(n):
         geo[j] = nstate[j]
     impact = (slot == G_OTHER and nstate[k] != FLAT) or (slot == G_ANCHOR and nstate[k] == OPEN)
@@ -589,9 +607,14 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
             for j in range(nz):
                 extra[j] = 0.0
         t_before = _kinetic_of(P, ends, anchor, z, zd)
+        # impulses are checked against the momentum scale of the impact, not the weight
+        m_tot = 0.0
+        for j in range(n):
+            m_tot += P[j, P_MASS]
+        tol_impulse = 1e-9 * math.sqrt(2.0 * m_tot * t_before)
         z_pre, zd_pre, ends_pre, anchor_pre = z.copy(), zd.copy(), ends.copy(), anchor.copy()
         code = select_mode(VELOCITY, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, -1, 0,
-                           tol_force, tol_rate, x_sel, lam_sel)
+                           tol_impulse, tol_rate, x_sel, lam_sel)
         if code != SELECT_OK:
             n_ev = _record(events, n_ev, t, k, EVENT_IMPACT, -1, 0, 0.0)
             return STATUS_INCONSISTENT, d_impact, n_ev
@@ -604,7 +627,7 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
             for j in range(nz):
                 extra[j] = 0.0
             code = select_mode(VELOCITY, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, -1, 0,
-                               tol_force, tol_rate, x_sel, lam_sel, k)
+                               tol_impulse, tol_rate, x_sel, lam_sel, k)
             if code != SELECT_OK:
                 n_ev = _record(events, n_ev, t, k, EVENT_IMPACT, -1, 0, 0.0)
                 return STATUS_INCONSISTENT, d_impact, n_ev
@@ -669,6 +692,10 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
         y[nz + j] = zd[j]
     if not impact:
         n_ev = _record(events, n_ev, t, k, slot, nstate[k], tstate[k], 0.0)
+    for j in range(n):
+        # what else changed at this event (a pedestal set sliding by the statue's impact, …)
+        if j != k and (nstate[j] != n_before[j] or tstate[j] != t_before_state[j]):
+            n_ev = _record(events, n_ev, t, j, EVENT_FOLLOWS, nstate[j], tstate[j], 0.0)
     if code != SELECT_OK:
         return STATUS_INCONSISTENT, d_impact, n_ev
     return 0, d_impact, n_ev

@@ -192,10 +192,12 @@ def reanchor(P, ends, anchor, k, z, zd, e_new, type_new, x_new):
 
 
 @njit(cache=True)
-def _candidate_ok(level, P, ends, anchor, geo, k, nst, tst, z, zd, x, lam, tol_force, tol_rate):
+def _candidate_ok(level, P, ends, anchor, geo, k, nst, tst, z, zd, x, lam, tol_force, tol_rate, check_normal):
     """Complementarity conditions of interface k for one candidate (see the module docstring)."""
     i = 3 * k
-    if nst == FLAT:
+    if not check_normal:
+        pass
+    elif nst == FLAT:
         n_a, n_o = flat_forces(P, ends, anchor, k, z, lam)
         if n_a < -tol_force or n_o < -tol_force:
             return False
@@ -205,7 +207,7 @@ def _candidate_ok(level, P, ends, anchor, geo, k, nst, tst, z, zd, x, lam, tol_f
     else:
         if geo[k] >= ROCK and x[i + 2] < -tol_rate:
             return False
-    if nst <= ROCK and geo[k] == FLAT:
+    if check_normal and nst <= ROCK and geo[k] == FLAT:
         # the other end must open: its gap rate (velocity level) or gap acceleration ≥ 0
         grad = end_gap_gradient(P, ends, anchor, k, z, 1 - anchor[k])
         if grad[0] * x[i] + grad[1] * x[i + 1] + grad[2] * x[i + 2] < -tol_rate:
@@ -263,6 +265,8 @@ def select_mode(level, P, ends, anchor, geo, z, zd, ah, av, gravity, rhs_extra,
                 ok = False
             if k == force_flat and nst != FLAT:
                 ok = False
+            if force_flat >= 0 and k != force_flat and (nst != geo[k] or other == 1):
+                ok = False  # the rest rule lands one interface and lifts nothing else
             allowed[k, c] = ok
     z0 = z.copy()
     zd0 = zd.copy()
@@ -316,7 +320,7 @@ def select_mode(level, P, ends, anchor, geo, z, zd, ah, av, gravity, rhs_extra,
                         if k == force_flat:
                             continue
                         if not _candidate_ok(level, P, ends, anchor, geo, k, nstate[k], tstate[k], z, zd,
-                                             x_out, lam_out, tol_force, tol_rate):
+                                             x_out, lam_out, tol_force, tol_rate, force_flat < 0):
                             good = False
                             break
                     if good:

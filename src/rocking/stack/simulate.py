@@ -149,7 +149,7 @@ def simulate_stack(
     bp = _breakpoints(motion, t_end)
     pieces = _piece_table((sig_h.kind, sig_h.params, sig_h.time, sig_h.values),
                           (sig_v.kind, sig_v.params, sig_v.time, sig_v.values), bp, 0.0, t_end)
-    status, t_stop, samples, events, summ, e0 = engine.integrate(
+    status, t_stop, samples, events, summ, e0, *_ = engine.integrate(
         P, ends, anchor, pieces, bp, t_end, t_settle, y0, options.gravity, options.rtol, options.atol,
         options.max_step, save_dt, int(options.max_events), options.rest_velocity,
     )
