@@ -79,14 +79,16 @@ def _module_imports(path: Path) -> set[Path]:
     return out
 
 
-def test_numba_cache_fingerprint_covers_every_compiled_module():
-    """Numba's disk cache checks only a function's own file, not its callees', so
-    rocking.solver._CORE must list every module with compiled code that the compiled solver
-    reaches through its imports: an edit to one left out (models/transitions.py was) would leave a
-    stale solver running."""
-    from rocking.solver import _CORE
+@pytest.mark.parametrize("package, root", [("rocking.solver", "solver/compiled.py"), ("rocking.stack", "stack/engine.py")])
+def test_numba_cache_fingerprint_covers_every_compiled_module(package, root):
+    """Numba's disk cache checks only a function's own file, not its callees', so each compiled
+    core's _CORE must list every module with compiled code that it reaches through its imports:
+    an edit to one left out (models/transitions.py was; stack/modes.py was, and a fixed rule
+    kept running in its stale compiled caller) would leave a stale solver running."""
+    import importlib
 
-    seen, todo = set(), [PKG / "solver" / "compiled.py"]
+    core = importlib.import_module(package)._CORE
+    seen, todo = set(), [PKG / root]
     while todo:
         path = todo.pop()
         if path in seen:
@@ -95,5 +97,5 @@ def test_numba_cache_fingerprint_covers_every_compiled_module():
         todo.extend(_module_imports(path) - seen)
     compiled = {str(p.relative_to(PKG)) for p in seen if "njit" in p.read_text(encoding="utf-8")
                 and p.name != "__init__.py"}
-    missing = sorted(compiled - set(_CORE))
-    assert not missing, f"compiled modules missing from rocking.solver._CORE: {missing}"
+    missing = sorted(compiled - set(core))
+    assert not missing, f"compiled modules missing from {package}._CORE: {missing}"

@@ -7,6 +7,7 @@ margin of ~10 while any modelling difference (a wrong impact law, a missing term
 1e-3 or more.
 """
 
+import dataclasses
 import math
 
 import numpy as np
@@ -75,20 +76,33 @@ def test_statue_on_sliding_pedestal_matches_todays_solver(amplitude):
     assert abs(r.end_time - ref.end_time) < 1e-9
 
 
-@pytest.mark.parametrize("name, variant", [
-    ("9a", "alone_infinite_friction"), ("9a", "alone_floor_friction"), ("9a", "pedestal"),
-    ("9b", "alone_infinite_friction"), ("10a", "alone_floor_friction"),
-    ("11a", "alone_floor_friction"), ("11a", "pedestal"), ("12b", "pedestal"),
-])
-def test_paper_cases_match_todays_solver(name, variant):
+PAPER_RUNS = [(name, variant, 1e-12, 1e-8) for name in ("9a", "9b", "10a", "10b", "11a", "11b", "12a", "12b")
+              for variant in ("pedestal", "alone_floor_friction")]
+PAPER_RUNS += [(name, "alone_infinite_friction", 1e-12, 1e-8) for name in ("9a", "9b", "10b")]
+# Slender blocks rocking for 20 s at r = 0.8: an error grows by orders of magnitude over the
+# impacts, so the two solvers meet at 1e-8 rad only from rtol 1e-13 (measured: 1.2e-8–2e-8 rad at
+# 1e-12, 2e-10–3e-9 at 1e-13, and the event times converge to ours: at rtol 1e-10 ours are
+# within 1e-10 s of the converged values, today's within 2e-8 s).
+PAPER_RUNS += [(name, "alone_infinite_friction", 1e-13, 1e-8) for name in ("11a", "11b", "12a", "12b")]
+
+
+@pytest.mark.parametrize("name, variant, rtol, tol", PAPER_RUNS)
+def test_paper_cases_match_todays_solver(name, variant, rtol, tol):
     """The paper's runs (25 s / 20 s of harmonic motion, tens of impacts, Coulomb impact law with
-    r = 0.8) on the general engine: the same rocking, sliding and impacts."""
+    r = 0.8) on the general engine: the same rocking, sliding and impacts. 9b with floor friction
+    (alone or on the pedestal) ends a long sequence of impacts while sliding (today's rule sets θ̇ = 0 and keeps u̇;
+    ours lands the block with a plastic, Coulomb-bounded impulse), which moves u by 3e-7 m: it is
+    held to 1e-6. 10a alone is left out: today's solver restarts its steps at the instant |θ|
+    passes α (a marker event), and the runs drift apart to 2e-6 rad after it (2.7e-7 at 1e-13)."""
+    if name == "9b" and variant != "alone_infinite_friction":
+        tol = 1e-6
     case = case_named(name)
     motion = paper_motion(case)
     system, options = variant_setup(case, variant)
+    options = dataclasses.replace(options, rtol=rtol, atol=rtol * 1e-2)
     r, ref, dth, du = _compare(system, motion, duration=motion.duration, options=options)
     assert r.status == ref.status
-    assert dth < 1e-8 and du < 1e-8
+    assert dth < tol and du < tol
 
 
 def _ramp_onset(stack, rate=0.05):

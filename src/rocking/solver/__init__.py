@@ -9,10 +9,8 @@ the cache when any of them changed.
 
 from __future__ import annotations
 
-import hashlib
-from pathlib import Path
+from .._numba_cache import refresh
 
-_PKG = Path(__file__).resolve().parent.parent
 _CORE = [
     "models/dynamics.py", "models/modes.py", "models/parameters.py", "models/transitions.py", "contact/impact.py",
     "excitation/signal.py", "excitation/base.py", "integrators/dopri5.py", "integrators/dop853.py",
@@ -20,22 +18,4 @@ _CORE = [
 ]
 
 
-def _refresh_numba_cache() -> None:
-    digest = hashlib.sha256()
-    for name in _CORE:
-        digest.update((_PKG / name).read_bytes())
-    stamp = _PKG / "solver" / "__pycache__" / "core.sha256"
-    new = digest.hexdigest()
-    try:
-        if stamp.exists() and stamp.read_text() == new:
-            return
-        for folder in {(_PKG / name).parent / "__pycache__" for name in _CORE}:
-            for f in list(folder.glob("*.nbi")) + list(folder.glob("*.nbc")):
-                f.unlink(missing_ok=True)
-        stamp.parent.mkdir(exist_ok=True)
-        stamp.write_text(new)
-    except OSError:
-        pass  # read-only installation: numba then keeps its cache elsewhere or none
-
-
-_refresh_numba_cache()
+refresh(_CORE, "solver/__pycache__/core.sha256")

@@ -1,6 +1,27 @@
-"""Stacks of rigid blocks: the general planar contact engine (issue 11; docs/theory/stack.md)."""
+"""Stacks of rigid blocks: the general planar contact engine (issue 11; docs/theory/stack.md).
 
-from .model import Block, Interface, Stack
-from .simulate import StackResponse, simulate_stack
+Example
+-------
+>>> import rocking
+>>> from rocking.stack import Block, Interface, Stack, simulate_stack
+>>> stack = Stack(blocks=(Block(name="pedestal", width=0.8, height=0.5, mass=300.0),
+...                       Block(name="statue", width=0.3, height=1.2, mass=100.0)),
+...               interfaces=(Interface(friction=rocking.Friction(static=0.3, kinetic=0.25)), Interface()))
+>>> r = simulate_stack(stack, rocking.SinePulse(amplitude=3.5, frequency=1.0))
+>>> [b["overturned"] for b in r.blocks]
+[False, True]
+"""
+
+from .._numba_cache import refresh
+
+# Everything the compiled engine is built from (numba's cache checks only each function's own file).
+_CORE = [
+    "stack/kinematics.py", "stack/modes.py", "stack/engine.py", "excitation/signal.py", "excitation/base.py",
+    "integrators/dop853.py", "solver/compiled.py",
+]
+refresh(_CORE, "stack/__pycache__/core.sha256")
+
+from .model import Block, Interface, Stack  # noqa: E402
+from .simulate import StackResponse, simulate_stack  # noqa: E402
 
 __all__ = ["Block", "Interface", "Stack", "StackResponse", "simulate_stack"]

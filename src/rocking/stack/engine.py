@@ -51,6 +51,7 @@ from .modes import (
 )
 
 N_SUB = 4  # interior points of a step where the guards are sampled
+GRAZING = 0.2  # a sampled local minimum below this fraction of its neighbours is searched
 N_GUARD_SLOTS = 7  # per interface: anchor, other end, stick+/slip, stick−, overturn, edge, overlap
 (G_ANCHOR, G_OTHER, G_STICK_POS, G_STICK_NEG, G_OVERTURN, G_EDGE, G_OVERLAP) = range(N_GUARD_SLOTS)
 
@@ -248,6 +249,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
     ng = n * N_GUARD_SLOTS
     g0 = np.empty(ng)
     g1 = np.empty(ng)
+    gp = np.empty(ng)
     gm = np.empty(ng)
     ym = np.empty(ny)
     lam = np.zeros(nz)
@@ -365,9 +367,28 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                     if xr < x_first:
                         x_first = xr
                         first = j
+            if first < 0 and sub >= 2:
+                # a guard whose samples dip towards zero and rise again (a grazing crest, where
+                # a slip starts that μk < μs then keeps going): find the minimum between the
+                # neighbouring samples, and the crossing before it if the minimum is ≤ 0
+                x_a = (sub - 2) / N_SUB
+                for j in range(ng):
+                    if j % N_GUARD_SLOTS > G_STICK_NEG:
+                        continue
+                    if gp[j] > 0.0 and g0[j] > 0.0 and g1[j] > 0.0 and g0[j] < gp[j] and g0[j] <= g1[j] \
+                            and g0[j] < GRAZING * max(gp[j], g1[j]):
+                        x_min, g_min = _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_a,
+                                                x_hi, ym, gm)
+                        if g_min <= 0.0:
+                            xr = _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_a, x_min,
+                                         gp[j], g_min, ym, gm)
+                            if xr < x_first:
+                                x_first = xr
+                                first = j
             if first >= 0:
                 break
             for j in range(ng):
+                gp[j] = g0[j]
                 g0[j] = g1[j]
             x_lo = x_hi
         if first >= 0:
@@ -448,6 +469,44 @@ def _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, h
         if (hi - lo) * hs < 1e-13:
             break
     return hi
+
+
+@njit(cache=True)
+def _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, hi, ym, gm):
+    """(x, g) at the minimum of guard j over [lo, hi] of the step (golden section on the dense
+    output); stops early once the guard is seen ≤ 0."""
+    r = 0.6180339887498949
+    a, b = lo, hi
+    c = b - r * (b - a)
+    d = a + r * (b - a)
+    dop853.dense(y, F, c, ym)
+    guards(P, ends, anchor, nstate, tstate, t + c * hs, ym, loc, gravity, gm)
+    fc = gm[j]
+    dop853.dense(y, F, d, ym)
+    guards(P, ends, anchor, nstate, tstate, t + d * hs, ym, loc, gravity, gm)
+    fd = gm[j]
+    for it in range(80):
+        if fc <= 0.0:
+            return c, fc
+        if fd <= 0.0:
+            return d, fd
+        if (b - a) * hs < 1e-12:
+            break
+        if fc < fd:
+            b, d, fd = d, c, fc
+            c = b - r * (b - a)
+            dop853.dense(y, F, c, ym)
+            guards(P, ends, anchor, nstate, tstate, t + c * hs, ym, loc, gravity, gm)
+            fc = gm[j]
+        else:
+            a, c, fc = c, d, fd
+            d = a + r * (b - a)
+            dop853.dense(y, F, d, ym)
+            guards(P, ends, anchor, nstate, tstate, t + d * hs, ym, loc, gravity, gm)
+            fd = gm[j]
+    if fc < fd:
+        return c, fc
+    return d, fd
 
 
 @njit(cache=True)

@@ -14,10 +14,10 @@ The candidate holds if its forces and accelerations satisfy the complementarity 
 (docs/theory/stack.md §4): closed normals push (Λ ≥ 0), opening ends accelerate apart, stuck
 interfaces need no more than μs·N, slipping ones start in the direction their acceleration
 takes. This is the linear complementarity problem on the contact accelerations, solved by
-trying its finitely many branches; the first that holds in the order FLAT → ROCK on the anchor
-→ ROCK on the other end → OPEN, stick → slip +x → slip −x (the most constrained first) is
-taken. The same routine, with velocities for accelerations and impulses for forces, decides
-an impact (``level = VELOCITY``).
+trying its finitely many branches; the first that holds in the order of ``_CANDIDATES`` (stick
+before slip, flat before rocking, open last: the most constrained first) is taken. The same
+routine, with velocities for accelerations and impulses for forces, decides an impact
+(``level = VELOCITY``).
 """
 
 from __future__ import annotations
@@ -48,11 +48,14 @@ OPEN, ROCK, FLAT = 0, 1, 2
 ACCELERATION, VELOCITY = 0, 1
 
 # Candidate order for one interface: (normal state, rock on the other end?, tangential state).
+# Stick before slip, then rest before rock: the order of rocking.simulate (derivation.md §5,
+# "stick-rest, stick-rock, slide-rest, slide-rock"), which decides where Coulomb friction leaves
+# the motion not unique (a block that may either start to rock or slide back).
 _CANDIDATES = np.array(
     [
-        [FLAT, 0, 0], [FLAT, 0, 1], [FLAT, 0, -1],
-        [ROCK, 0, 0], [ROCK, 0, 1], [ROCK, 0, -1],
-        [ROCK, 1, 0], [ROCK, 1, 1], [ROCK, 1, -1],
+        [FLAT, 0, 0], [ROCK, 0, 0], [ROCK, 1, 0],
+        [FLAT, 0, 1], [FLAT, 0, -1],
+        [ROCK, 0, 1], [ROCK, 0, -1], [ROCK, 1, 1], [ROCK, 1, -1],
         [OPEN, 0, 0],
     ],
     dtype=np.int64,
@@ -317,8 +320,6 @@ def select_mode(level, P, ends, anchor, geo, z, zd, ah, av, gravity, rhs_extra,
                     good = True
                     for k in range(n):
                         c = counter[k]
-                        if k == force_flat:
-                            continue
                         if not _candidate_ok(level, P, ends, anchor, geo, k, nstate[k], tstate[k], z, zd,
                                              x_out, lam_out, tol_force, tol_rate, force_flat < 0):
                             good = False
