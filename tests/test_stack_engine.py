@@ -16,6 +16,7 @@ import pytest
 import rocking
 from rocking.analyses.paper import case_named, paper_motion, variant_setup
 from rocking.contact.friction import Friction
+from rocking.excitation.base import KIND_RAMP, ZERO_SIGNAL, AbstractMotion, Signal
 from rocking.stack import Block, Interface, Stack, simulate_stack
 
 G = 9.80665
@@ -185,3 +186,125 @@ def test_bad_stack_inputs_name_the_field():
         Block(width=1, height=1, mass=1, inertia=-1.0)
     with pytest.raises(ValueError, match="restitution"):
         Interface(restitution=1.5)
+
+
+class _VerticalRamp(AbstractMotion):
+    """No horizontal motion; the floor accelerates downwards, a_v = −k·t (m/s²), for t ≤ end."""
+
+    def __init__(self, rate, end):
+        self.rate, self.end = rate, end
+
+    @property
+    def duration(self):
+        return self.end
+
+    def acceleration(self, t):
+        return np.zeros_like(np.asarray(t, dtype=float))
+
+    def signal(self):
+        return ZERO_SIGNAL
+
+    def vertical_signal(self):
+        return Signal(KIND_RAMP, np.array([-self.rate, 0.0, 0.0, self.end]), np.zeros(0), np.zeros(0))
+
+    def vertical_acceleration(self, t):
+        t = np.asarray(t, dtype=float)
+        return np.where((t >= 0) & (t <= self.end), -self.rate * t, 0.0)
+
+
+def test_flight_when_the_floor_falls_faster_than_gravity():
+    """a_v = −k t: every contact opens when a_v = −g, at t* = g/k, and from then on each block
+    moves relative to the floor with acceleration −(g + a_v) = k (t − t*): Y = Y₀ + k (t − t*)³/6."""
+    k = 20.0
+    stack = Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(width=0.3, height=1.2, mass=100.0)),
+                  interfaces=(Interface(friction=Friction(static=0.3, kinetic=0.25)), Interface()))
+    r = simulate_stack(stack, _VerticalRamp(k, 1.0), duration=0.8, options={"gravity": G})
+    t_star = G / k
+    assert abs(r.blocks[0]["lifted_off_time"] - t_star) < 1e-9
+    after = r.t > t_star
+    for i, y0 in enumerate((0.25, 0.5 + 0.6)):
+        expected = y0 + k * (r.t[after] - t_star) ** 3 / 6
+        assert np.max(np.abs(r.pose[after, i, 1] - expected)) < 1e-9
+        assert np.max(np.abs(r.pose[:, i, 2])) < 1e-12  # nothing turns
+
+
+def test_statue_slipping_on_a_held_pedestal_moves_as_todays_sliding_block():
+    """A squat statue that cannot rock, on a pedestal the floor holds (no floor slip, too wide to
+    rock): its slip on the pedestal is today's single sliding block."""
+    fr = Friction(static=0.25, kinetic=0.2)
+    stack = Stack(blocks=(Block(width=3.0, height=0.3, mass=500.0), Block(width=1.0, height=0.5, mass=80.0)),
+                  interfaces=(Interface(), Interface(friction=fr)))
+    motion = rocking.SinePulse(amplitude=4.0, frequency=1.5)
+    r = simulate_stack(stack, motion)
+    ref = rocking.simulate(rocking.System(statue=rocking.Statue(width=1.0, height=0.5, mass=80.0, friction=fr)), motion)
+    on = np.isin(np.round(ref.t, 9), np.round(r.t, 9))
+    u = np.interp(ref.t, r.t, r.sliding[:, 1])
+    assert np.max(np.abs(u - ref.u)[on]) < 1e-9
+    assert abs(r.blocks[1]["residual_sliding"] - ref.summary()["residual_sliding"]) < 1e-9
+    assert np.max(np.abs(r.sliding[:, 0])) == 0.0 and r.blocks[0]["first_rocking_time"] is None
+
+
+def test_stack_rocks_as_one_composite_body():
+    """While the upper interface sticks, the stack rocks about the floor corner as one rigid
+    body: I_O θ̈ = m g r_x − m a_h r_y (r: centre of mass from the pivot, turned by θ), solved
+    here with SciPy from the composite's own mass properties."""
+    from scipy.integrate import solve_ivp
+
+    m1, m2, b1, h1, b2, h2 = 40.0, 60.0, 0.3, 1.0, 0.5, 0.5
+    stack = Stack(blocks=(Block(width=b1, height=h1, mass=m1), Block(width=b2, height=h2, mass=m2)),
+                  interfaces=(Interface(), Interface()))
+    amp, width = -0.3 * G, 0.25
+    r = simulate_stack(stack, rocking.RectanglePulse(amplitude=amp, width=width), duration=4.0)
+    assert r.blocks[0]["first_rocking_time"] == 0.0
+    assert r.blocks[1]["first_rocking_time"] is None
+    # composite about the right floor corner (the pulse pushes the stack towards +x)
+    m = m1 + m2
+    parts = [(m1, b1, h1, 0.5 * h1), (m2, b2, h2, h1 + 0.5 * h2)]
+    pivot = np.array([0.5 * b1, 0.0])
+    i_o = sum(mi * (bi**2 + hi**2) / 12 + mi * ((0 - pivot[0]) ** 2 + yi**2) for mi, bi, hi, yi in parts)
+    rc = np.array([-pivot[0], sum(mi * yi for mi, _, _, yi in parts) / m])
+
+    def rhs(t, s):
+        th, w = s
+        c, sn = np.cos(th), np.sin(th)
+        rx, ry = c * rc[0] + sn * rc[1], -sn * rc[0] + c * rc[1]
+        a_h = amp if t < width else 0.0
+        return [w, (m * G * rx - m * a_h * ry) / i_o]
+
+    impact = r.events[r.events[:, 2] == -1][0, 0]
+    sel = (r.t > 0) & (r.t < impact - 1e-6)
+    sol = solve_ivp(rhs, (0.0, impact), [0.0, 0.0], method="DOP853", rtol=1e-12, atol=1e-14, dense_output=True,
+                    max_step=width / 4, t_eval=None)
+    # (the pulse's end is a kink: integrate the two pieces separately for full accuracy)
+    s1 = solve_ivp(rhs, (0.0, width), [0.0, 0.0], method="DOP853", rtol=1e-12, atol=1e-14, dense_output=True)
+    s2 = solve_ivp(rhs, (width, impact + 0.05), s1.y[:, -1], method="DOP853", rtol=1e-12, atol=1e-14,
+                   dense_output=True, events=lambda t, s: s[0])
+    th = np.where(r.t[sel] <= width, s1.sol(np.minimum(r.t[sel], width))[0], s2.sol(np.maximum(r.t[sel], width))[0])
+    assert np.max(np.abs(r.pose[sel, 0, 2] - th)) < 1e-8
+    assert np.max(np.abs(r.pose[sel, 1, 2] - th)) < 1e-8  # the top turns with it
+    t_back = [t for t in s2.t_events[0] if t > width + 1e-6][0]
+    assert abs(impact - t_back) < 1e-9
+    del sol
+
+
+def test_similarity_law():
+    """Lengths × λ, the pulse's period × √λ, the same acceleration: the same rotation history on
+    the time axis scaled by √λ (Dimitrakopoulos & DeJong's similarity, for a stack)."""
+    lam = 4.0
+
+    def make(s):
+        return Stack(blocks=(Block(width=0.8 * s, height=0.5 * s, mass=300.0),
+                             Block(width=0.3 * s, height=1.2 * s, mass=100.0)),
+                     interfaces=(Interface(friction=Friction(static=0.3, kinetic=0.25)), Interface()))
+
+    a = simulate_stack(make(1.0), rocking.SinePulse(amplitude=3.0, frequency=1.0), duration=2.0,
+                       options={"save_dt": 0.01})
+    b = simulate_stack(make(lam), rocking.SinePulse(amplitude=3.0, frequency=1.0 / math.sqrt(lam)),
+                       duration=2.0 * math.sqrt(lam), options={"save_dt": 0.01 * math.sqrt(lam)})
+    n = min(len(a.t), len(b.t))
+    grid_a = np.isclose(a.t[:n] / 0.01, np.round(a.t[:n] / 0.01), atol=1e-9)
+    ta = a.t[grid_a]
+    rot_b = np.interp(ta * math.sqrt(lam), b.t, b.rotation[:, 1])
+    assert np.max(np.abs(a.rotation[grid_a, 1] - rot_b)) < 1e-8
+    slide_b = np.interp(ta * math.sqrt(lam), b.t, b.sliding[:, 0])
+    assert np.max(np.abs(lam * a.sliding[grid_a, 0] - slide_b)) < 1e-8 * lam

@@ -38,6 +38,7 @@ from .kinematics import (
 from .modes import (
     ACCELERATION,
     FLAT,
+    SELECT_HELD,
     OPEN,
     ROCK,
     SELECT_OK,
@@ -51,6 +52,8 @@ from .modes import (
 )
 
 N_SUB = 4  # interior points of a step where the guards are sampled
+LOOKAHEAD = 1e-9  # s (relative to t beyond 1 s): where the mode after an event is decided
+MAX_REPEATS = 50  # events at one instant before the run stops as inconsistent
 GRAZING = 0.2  # a sampled local minimum below this fraction of its neighbours is searched
 N_GUARD_SLOTS = 7  # per interface: anchor, other end, stick+/slip, stick−, overturn, edge, overlap
 (G_ANCHOR, G_OTHER, G_STICK_POS, G_STICK_NEG, G_OVERTURN, G_EDGE, G_OVERLAP) = range(N_GUARD_SLOTS)
@@ -75,8 +78,8 @@ EVENT_FOLLOWS = -2  # another interface's mode changed at an event
 # rocking time, first sliding time, largest required friction ratio of its interface, total
 # slip path.
 (B_OVERTURN, B_PEAK_PHI, B_PEAK_SLIP, B_FINAL_SLIP, B_LIFTOFF, B_FIRST_ROCK, B_FIRST_SLIDE, B_MU_REQ,
- B_SLIP_PATH, B_PEAK_ABS_THETA) = range(10)
-N_BLOCK_SUMMARY = 10
+ B_SLIP_PATH, B_PEAK_ABS_THETA, B_HELD) = range(11)
+N_BLOCK_SUMMARY = 11
 
 
 @njit(cache=True)
@@ -134,7 +137,7 @@ def evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, dy, lam):
 
 
 @njit(cache=True)
-def guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g):
+def guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g, held):
     """Guard values (N × N_GUARD_SLOTS, flattened), positive while the mode holds."""
     n = P.shape[0]
     nz = 3 * n
@@ -159,6 +162,11 @@ def guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g):
         else:
             g[b + G_ANCHOR] = z[i + 2]
             g[b + G_OTHER] = end_gap(P, ends, anchor, k, z, zd, e_other)[0]
+        if held[k]:
+            # a contact held in tension (the paradox rule): its normal forces are not watched
+            g[b + G_ANCHOR] = 1.0
+            if nstate[k] == FLAT:
+                g[b + G_OTHER] = 1.0
         if nstate[k] >= ROCK and P[k, P_CAN_SLIP] > 0.5:
             if tstate[k] == 0:
                 g[b + G_STICK_POS] = P[k, P_MU_S] * lam[i + 2] - lam[i]
@@ -268,12 +276,11 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
         summ[k, B_MU_REQ] = 0.0
         summ[k, B_SLIP_PATH] = 0.0
         summ[k, B_PEAK_ABS_THETA] = 0.0
-    # where each block's centre starts along the face below, for the slip measure
-    slip0 = np.zeros(n)
-    for k in range(n):
-        rx, _, _, _ = relative_pose(P, ends, anchor, k, y[3 * k], y[3 * k + 1], y[3 * k + 2], 0.0, 0.0, 0.0)
-        slip0[k] = rx
+    slip0 = np.zeros(n)  # the slip of each interface at the last tracking point, m
     d_impact = 0.0
+    t_last_event = -1.0
+    repeats = 0
+    held = np.zeros(n, dtype=np.bool_)
     n_out = 0
     n_ev = 0
     next_grid = 0
@@ -297,6 +304,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
     y[:nz] = zv
     y[nz:2 * nz] = zdv
     e0 = _energy_of(P, ends, anchor, y, gravity)
+    _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity)
     h = min(max_step, 1e-3)
     n_ctrl = ny  # the energy ledger too: it is checked to 1e-9
     _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0])
@@ -310,9 +318,31 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             if at_rest:
                 break
         t_lim = t_end
+        crossed = False
         while ib < nb and breakpoints[ib] <= t:
             ib += 1
             loc = pieces[ib]
+            crossed = True
+        if crossed:
+            # the floor motion may jump here (a pulse's end): the mode is decided again if any
+            # guard is not positive under the new formula
+            guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0, held)
+            bad = False
+            for j in range(ng):
+                if g0[j] <= 0.0 and j % N_GUARD_SLOTS <= G_STICK_NEG:
+                    bad = True
+            if bad:
+                ah, av = _ground(loc, t)
+                for j in range(n):
+                    geo[j] = nstate[j]
+                zv = y[:nz].copy()
+                zdv = y[nz:2 * nz].copy()
+                if select_mode(ACCELERATION, P, ends, anchor, geo, zv, zdv, ah, av, gravity, extra, nstate, tstate,
+                               -1, 0, tol_force, tol_rate, x_sel, lam_sel) != SELECT_OK:
+                    status = STATUS_INCONSISTENT
+                    break
+                y[:nz] = zv
+                y[nz:2 * nz] = zdv
             _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0])
         if ib < nb:
             t_lim = min(t_lim, breakpoints[ib])
@@ -333,18 +363,25 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
         # sampled at N_SUB interior points of the dense output
         _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, hs, loc, gravity, K, F)
         have_dense = True
-        guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0)
+        guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0, held)
         first = -1
         x_first = 2.0
         x_lo = 0.0
         for sub in range(1, N_SUB + 1):
             x_hi = sub / N_SUB
             if sub == N_SUB:
-                guards(P, ends, anchor, nstate, tstate, t + hs, y_new, loc, gravity, g1)
+                guards(P, ends, anchor, nstate, tstate, t + hs, y_new, loc, gravity, g1, held)
             else:
                 dop853.dense(y, F, x_hi, ym)
-                guards(P, ends, anchor, nstate, tstate, t + x_hi * hs, ym, loc, gravity, g1)
+                guards(P, ends, anchor, nstate, tstate, t + x_hi * hs, ym, loc, gravity, g1, held)
             for j in range(ng):
+                if sub == 1 and g0[j] < -1e3 * tol_force and g1[j] < g0[j] and j % N_GUARD_SLOTS <= G_STICK_NEG \
+                        and nstate[j // N_GUARD_SLOTS] >= ROCK:
+                    # the mode breaks its own condition from the start (a force born negative):
+                    # an event now, decided again
+                    x_first = 0.0
+                    first = j
+                    break
                 if sub == 1 and g0[j] <= 0.0 and g1[j] <= 0.0:
                     # a guard that starts at zero (the gap of the corner an impact just left):
                     # it may open and close again within the first sub-step (a Zeno-like
@@ -353,17 +390,17 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                     for probe in range(24):
                         xp *= 0.5
                         dop853.dense(y, F, xp, ym)
-                        guards(P, ends, anchor, nstate, tstate, t + xp * hs, ym, loc, gravity, gm)
+                        guards(P, ends, anchor, nstate, tstate, t + xp * hs, ym, loc, gravity, gm, held)
                         if gm[j] > 0.0:
                             xr = _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, xp, x_hi,
-                                         gm[j], g1[j], ym, gm)
+                                         gm[j], g1[j], ym, gm, held)
                             if xr < x_first:
                                 x_first = xr
                                 first = j
                             break
                 if g0[j] > 0.0 and g1[j] <= 0.0:
                     xr = _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_lo, x_hi,
-                                 g0[j], g1[j], ym, gm)
+                                 g0[j], g1[j], ym, gm, held)
                     if xr < x_first:
                         x_first = xr
                         first = j
@@ -378,10 +415,10 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                     if gp[j] > 0.0 and g0[j] > 0.0 and g1[j] > 0.0 and g0[j] < gp[j] and g0[j] <= g1[j] \
                             and g0[j] < GRAZING * max(gp[j], g1[j]):
                         x_min, g_min = _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_a,
-                                                x_hi, ym, gm)
+                                                x_hi, ym, gm, held)
                         if g_min <= 0.0:
                             xr = _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_a, x_min,
-                                         gp[j], g_min, ym, gm)
+                                         gp[j], g_min, ym, gm, held)
                             if xr < x_first:
                                 x_first = xr
                                 first = j
@@ -405,16 +442,23 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                                               d_impact, y_new, t + he)
             t = t + he
             y[:] = y_new
-            _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam)
+            _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity)
             k_ev = first // N_GUARD_SLOTS
             slot = first - k_ev * N_GUARD_SLOTS
             status, d_impact, n_ev = _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k_ev,
                                                    slot, tol_force, tol_rate, rest_velocity, extra, x_sel, lam_sel,
-                                                   events, n_ev, d_impact, summ)
+                                                   events, n_ev, d_impact, summ, held)
             if n_ev >= max_events and status == STATUS_COMPLETED:
                 status = STATUS_MAX_EVENTS
+            if t == t_last_event:
+                repeats += 1
+                if repeats > MAX_REPEATS and status == STATUS_COMPLETED:
+                    status = STATUS_INCONSISTENT
+            else:
+                repeats = 0
+                t_last_event = t
             _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0])
-            _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam)
+            _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity)
             if n_out < cap:
                 _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, n_out)
                 n_out += 1
@@ -429,7 +473,10 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
         t = t + hs
         y[:] = y_new
         K[0, :] = K[dop853.FSAL, :]
-        _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam)
+        _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity)
+        for k in range(n):
+            if held[k] and lam[3 * k + 2] > 0.0:
+                held[k] = False  # the contact pushes again: its force is watched again
         fac = 0.9 * err ** -0.125 if err > 0 else 10.0
         h = hs * min(10.0, max(0.2, fac))
     if status == STATUS_COMPLETED and t >= t_end:
@@ -445,7 +492,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
 
 
 @njit(cache=True)
-def _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, hi, glo, ghi, ym, gm):
+def _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, hi, glo, ghi, ym, gm, held):
     """Fraction of the step where guard j first reaches zero in [lo, hi], given g(lo) = glo > 0
     ≥ ghi = g(hi) (Illinois method on the dense output)."""
     side = 0
@@ -454,7 +501,7 @@ def _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, h
         if not (lo < xm < hi):
             xm = 0.5 * (lo + hi)
         dop853.dense(y, F, xm, ym)
-        guards(P, ends, anchor, nstate, tstate, t + xm * hs, ym, loc, gravity, gm)
+        guards(P, ends, anchor, nstate, tstate, t + xm * hs, ym, loc, gravity, gm, held)
         gv = gm[j]
         if gv > 0.0:
             lo, glo = xm, gv
@@ -472,7 +519,7 @@ def _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, h
 
 
 @njit(cache=True)
-def _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, hi, ym, gm):
+def _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, hi, ym, gm, held):
     """(x, g) at the minimum of guard j over [lo, hi] of the step (golden section on the dense
     output); stops early once the guard is seen ≤ 0."""
     r = 0.6180339887498949
@@ -480,10 +527,10 @@ def _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, 
     c = b - r * (b - a)
     d = a + r * (b - a)
     dop853.dense(y, F, c, ym)
-    guards(P, ends, anchor, nstate, tstate, t + c * hs, ym, loc, gravity, gm)
+    guards(P, ends, anchor, nstate, tstate, t + c * hs, ym, loc, gravity, gm, held)
     fc = gm[j]
     dop853.dense(y, F, d, ym)
-    guards(P, ends, anchor, nstate, tstate, t + d * hs, ym, loc, gravity, gm)
+    guards(P, ends, anchor, nstate, tstate, t + d * hs, ym, loc, gravity, gm, held)
     fd = gm[j]
     for it in range(80):
         if fc <= 0.0:
@@ -496,13 +543,13 @@ def _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, 
             b, d, fd = d, c, fc
             c = b - r * (b - a)
             dop853.dense(y, F, c, ym)
-            guards(P, ends, anchor, nstate, tstate, t + c * hs, ym, loc, gravity, gm)
+            guards(P, ends, anchor, nstate, tstate, t + c * hs, ym, loc, gravity, gm, held)
             fc = gm[j]
         else:
             a, c, fc = c, d, fd
             d = a + r * (b - a)
             dop853.dense(y, F, d, ym)
-            guards(P, ends, anchor, nstate, tstate, t + d * hs, ym, loc, gravity, gm)
+            guards(P, ends, anchor, nstate, tstate, t + d * hs, ym, loc, gravity, gm, held)
             fd = gm[j]
     if fc < fd:
         return c, fc
@@ -540,9 +587,20 @@ def _kinetic_of(P, ends, anchor, z, zd):
 
 
 @njit(cache=True)
-def _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam):
+def _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity):
+    """Peaks, first times, the friction each stuck interface needs, and the slip path, at the end
+    of a step or at an event (slip0 holds the previous slip of each interface)."""
     n = P.shape[0]
     nz = 3 * n
+    dy = np.empty(2 * nz + 2)
+    evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, dy, lam)
+    for k in range(n):
+        # (not once the block is past its tipping angle and falling: N → 0 there)
+        tipped = abs(y[3 * k + 1]) >= math.atan2(P[k, P_BU], P[k, P_HU])
+        if nstate[k] >= ROCK and (tstate[k] == 0 or P[k, P_CAN_SLIP] < 0.5) and lam[3 * k + 2] > 0.0 and not tipped:
+            ratio = abs(lam[3 * k]) / lam[3 * k + 2]
+            if ratio > summ[k, B_MU_REQ]:
+                summ[k, B_MU_REQ] = ratio
     theta = 0.0
     for k in range(n):
         i = 3 * k
@@ -555,6 +613,8 @@ def _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam):
         s = slip_of(P, ends, anchor, k, y[:nz])
         if abs(s) > summ[k, B_PEAK_SLIP]:
             summ[k, B_PEAK_SLIP] = abs(s)
+        summ[k, B_SLIP_PATH] += abs(s - slip0[k])
+        slip0[k] = s
         if nstate[k] == OPEN and math.isnan(summ[k, B_LIFTOFF]):
             summ[k, B_LIFTOFF] = t
         if nstate[k] == ROCK and math.isnan(summ[k, B_FIRST_ROCK]):
@@ -620,6 +680,66 @@ def _save_grid(P, ends, anchor, nstate, tstate, t, y, h, F, dense_ok, K, loc, gr
 
 
 @njit(cache=True)
+def _select_ahead(P, ends, anchor, geo, t, z, zd, loc, gravity, extra, nstate, tstate, veto_k, veto_kind, tol_force,
+                  tol_rate, x_sel, lam_sel):
+    """The mode after an event, decided a moment later (LOOKAHEAD): where the event's guard just
+    reached zero, the branches tie (a normal force of zero holds as a closed contact and as an
+    open one). The floor motion and the state a moment on, continued in the mode that ends, break
+    the tie the way the motion goes: a floor falling faster than g opens every contact; a falling
+    block whose corner force turns negative flies. The chosen anchors are then applied to the
+    state at the event itself (z, ż, ends, anchor in place)."""
+    n = P.shape[0]
+    nz = 3 * n
+    dt = LOOKAHEAD * max(1.0, t)
+    y = np.empty(2 * nz + 2)
+    y[:nz] = z
+    y[nz:2 * nz] = zd
+    y[2 * nz] = 0.0
+    y[2 * nz + 1] = 0.0
+    dy = np.empty(2 * nz + 2)
+    lam = np.zeros(nz)
+    evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, dy, lam)
+    za = z + dt * dy[:nz]
+    zda = zd + dt * dy[nz:2 * nz]
+    for k in range(n):
+        # what the event froze or released stays exact: a slip that stopped, a closed gap
+        i = 3 * k
+        if zd[i] == 0.0:
+            zda[i] = 0.0
+        if geo[k] >= ROCK:
+            za[i + 2] = z[i + 2]
+            zda[i + 2] = 0.0
+        if geo[k] == FLAT:
+            za[i + 1] = z[i + 1]
+            zda[i + 1] = 0.0
+    ends_a = ends.copy()
+    anchor_a = anchor.copy()
+    ah, av = _ground(loc, t + dt)
+    code = select_mode(ACCELERATION, P, ends_a, anchor_a, geo, za, zda, ah, av, gravity, extra, nstate, tstate,
+                       veto_k, veto_kind, tol_force, tol_rate, x_sel, lam_sel)
+    if code != SELECT_OK:
+        # No branch holds a moment on (a corner stuck by infinite friction whose normal force
+        # turns negative, but which would sink if released: Painlevé's paradox). Decide at the
+        # event itself, where the tie lets the contact hold; it then carries a small tension, as
+        # in rocking.simulate, which does not model lift-off.
+        ah, av = _ground(loc, t)
+        code = select_mode(ACCELERATION, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate,
+                           veto_k, veto_kind, tol_force, tol_rate, x_sel, lam_sel)
+        if code != SELECT_OK:
+            # not even there: keep every contact as it is, whatever the sign of its force
+            code = select_mode(ACCELERATION, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate,
+                               -1, 0, tol_force, tol_rate, x_sel, lam_sel, -1, True)
+            if code == SELECT_OK:
+                return SELECT_HELD
+        return code
+    for k in range(n):
+        if anchor_a[k] != anchor[k]:
+            e = anchor_a[k]
+            reanchor(P, ends, anchor, k, z, zd, e, ends_a[k, e, 0], ends_a[k, e, 1])
+    return code
+
+
+@njit(cache=True)
 def _record(events, n_ev, t, k, slot, nst, tst, de):
     if n_ev < events.shape[0]:
         events[n_ev, 0] = t
@@ -633,7 +753,7 @@ def _record(events, n_ev, t, k, slot, nst, tst, de):
 
 @njit(cache=True)
 def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, slot, tol_force, tol_rate,
-                  rest_velocity, extra, x_sel, lam_sel, events, n_ev, d_impact, summ):
+                  rest_velocity, extra, x_sel, lam_sel, events, n_ev, d_impact, summ, held):
     """Apply the event of guard ``slot`` on interface k at time t (y is the state there).
     Returns (status, impact dissipation so far, number of events)."""
     n = P.shape[0]
@@ -744,11 +864,18 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
                     else:
                         ends[j, e, 0] = ends_new[e, 0]
                         ends[j, e, 1] = ends_new[e, 1]
-    code = select_mode(ACCELERATION, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, veto_k,
-                       veto_kind, tol_force, tol_rate, x_sel, lam_sel)
+    code = _select_ahead(P, ends, anchor, geo, t, z, zd, loc, gravity, extra, nstate, tstate, veto_k, veto_kind,
+                         tol_force, tol_rate, x_sel, lam_sel)
     for j in range(nz):
         y[j] = z[j]
         y[nz + j] = zd[j]
+    for j in range(n):
+        held[j] = False
+    if code == SELECT_HELD:
+        if math.isnan(summ[k, B_HELD]):
+            summ[k, B_HELD] = t
+        held[k] = True
+        code = SELECT_OK
     if not impact:
         n_ev = _record(events, n_ev, t, k, slot, nstate[k], tstate[k], 0.0)
     for j in range(n):

@@ -63,7 +63,7 @@ _CANDIDATES = np.array(
 N_CANDIDATES = 10
 
 # Result codes of select_mode.
-SELECT_OK, SELECT_NONE = 0, 1
+SELECT_OK, SELECT_NONE, SELECT_HELD = 0, 1, 2
 
 
 @njit(cache=True)
@@ -229,14 +229,16 @@ def _candidate_ok(level, P, ends, anchor, geo, k, nst, tst, z, zd, x, lam, tol_f
 
 @njit(cache=True)
 def select_mode(level, P, ends, anchor, geo, z, zd, ah, av, gravity, rhs_extra,
-                nstate, tstate, veto_k, veto_kind, tol_force, tol_rate, x_out, lam_out, force_flat=-1):
+                nstate, tstate, veto_k, veto_kind, tol_force, tol_rate, x_out, lam_out, force_flat=-1, hold=False):
     """Choose the mode of every interface (fills nstate, tstate; may move anchors: ends, anchor,
     z, ż change in place). ``geo[k]`` is the geometric state (OPEN, ROCK, FLAT: which ends are
     closed now). At ``level`` ACCELERATION the solve is for z̈ and forces; at VELOCITY for ż⁺
     and impulses, with ``rhs_extra`` added (the restitution couples). ``veto_k``/``veto_kind``
     exclude the branch whose guard just fired (0: the anchor's normal force, 1: the other
     end's, 2: sticking), unless no other branch holds. ``force_flat`` (an interface, or −1)
-    lands that interface flat whatever its impulses (the rest rule after an impact).
+    lands that interface flat whatever its impulses (the rest rule after an impact). ``hold``
+    keeps every interface's normal state and skips the normal-force signs (the paradox rule,
+    docs/theory/stack.md §5).
     Returns SELECT_OK or SELECT_NONE."""
     n = P.shape[0]
     nz = 3 * n
@@ -268,7 +270,7 @@ def select_mode(level, P, ends, anchor, geo, z, zd, ah, av, gravity, rhs_extra,
                 ok = False
             if k == force_flat and nst != FLAT:
                 ok = False
-            if force_flat >= 0 and k != force_flat and (nst != geo[k] or other == 1):
+            if (hold or (force_flat >= 0 and k != force_flat)) and (nst != geo[k] or other == 1):
                 ok = False  # the rest rule lands one interface and lifts nothing else
             allowed[k, c] = ok
     z0 = z.copy()
@@ -321,7 +323,7 @@ def select_mode(level, P, ends, anchor, geo, z, zd, ah, av, gravity, rhs_extra,
                     for k in range(n):
                         c = counter[k]
                         if not _candidate_ok(level, P, ends, anchor, geo, k, nstate[k], tstate[k], z, zd,
-                                             x_out, lam_out, tol_force, tol_rate, force_flat < 0):
+                                             x_out, lam_out, tol_force, tol_rate, force_flat < 0 and not hold):
                             good = False
                             break
                     if good:

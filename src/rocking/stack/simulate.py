@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..excitation.base import AbstractMotion
+from ..results.response import verdict_text
 from ..simulation import Options, _as_options, _breakpoints
 from ..solver.compiled import _piece_table
 from . import engine
@@ -108,9 +109,41 @@ class StackResponse:
     blocks: tuple[dict, ...]
     initial_energy: float
 
+    interfaces: tuple[dict, ...] = ()
+
     @property
     def overturned(self) -> bool:
         return any(b["overturned"] for b in self.blocks)
+
+    @property
+    def still_moving(self) -> bool:
+        return self.status == "still_moving"
+
+    @property
+    def verdict(self) -> str:
+        """One line, as for a single statue; names the block that fell first."""
+        fallen = [b for b in self.blocks if b["overturned"]]
+        if fallen:
+            first = min(fallen, key=lambda b: b["overturn_time"])
+            return f"{first['name']} overturned at t = {first['overturn_time']:.3f} s"
+        return verdict_text(self.status, None, self.end_time)
+
+    def summary(self) -> dict:
+        """``blocks`` (from the floor up) and ``interfaces`` (floor first); the top-level keys
+        describe the top block, the statue, as ``rocking run`` does for a single statue. SI units,
+        radians, null when it did not happen."""
+        top = self.blocks[-1]
+        scale = float(np.max(np.abs(self.input_work)) + np.max(np.abs(self.energy - self.initial_energy)))
+        out = {key: top[key] for key in (
+            "overturned", "overturn_time", "peak_rotation", "peak_sliding", "residual_sliding",
+            "first_rocking_time", "first_sliding_time", "lifted_off_time")}
+        out.update(
+            impacts=int(np.sum(self.events[:, 2] == engine.EVENT_IMPACT)) if len(self.events) else 0,
+            energy_balance_error=float(np.max(np.abs(self.balance_error())) / scale) if scale > 0 else 0.0,
+            status=self.status, end_time=self.end_time, still_moving=self.still_moving, verdict=self.verdict,
+            blocks=[dict(b) for b in self.blocks], interfaces=[dict(f) for f in self.interfaces],
+        )
+        return out
 
     def balance_error(self) -> np.ndarray:
         """E(t) − E(0) − W_in + D_friction + D_impact, J (zero up to the solver's accuracy)."""
@@ -167,8 +200,20 @@ def _response(stack, status, t_stop, samples, events, summ, e0) -> StackResponse
     ifc = samples[:, c0 : c0 + engine.N_IFACE_COLS * n].reshape(len(t), n, engine.N_IFACE_COLS)
     tail = samples[:, c0 + engine.N_IFACE_COLS * n :]
     blocks = []
+    interfaces = []
+    below = ("floor",) + stack.names[:-1]
+    impacts = events[events[:, 2] == engine.EVENT_IMPACT] if len(events) else events
     for k, name in enumerate(stack.names):
         s = summ[k]
+        # peaks between the tracking points are caught by the saved samples
+        s[engine.B_PEAK_PHI] = max(s[engine.B_PEAK_PHI], float(np.max(np.abs(ifc[:, k, 0]), initial=0.0)))
+        s[engine.B_PEAK_SLIP] = max(s[engine.B_PEAK_SLIP], float(np.max(np.abs(ifc[:, k, 1]), initial=0.0)))
+        interfaces.append({
+            "name": f"{below[k]}–{name}",
+            "required_friction": float(s[engine.B_MU_REQ]),
+            "slip_path": float(s[engine.B_SLIP_PATH]),
+            "impacts": int(np.sum(impacts[:, 1] == k)) if len(impacts) else 0,
+        })
         overturned = bool(np.isfinite(s[engine.B_OVERTURN]))
         blocks.append({
             "name": name,
@@ -181,6 +226,7 @@ def _response(stack, status, t_stop, samples, events, summ, e0) -> StackResponse
             "lifted_off_time": _opt(s[engine.B_LIFTOFF]),
             "first_rocking_time": _opt(s[engine.B_FIRST_ROCK]),
             "first_sliding_time": _opt(s[engine.B_FIRST_SLIDE]),
+            "tension_held_time": _opt(s[engine.B_HELD]),
         })
     return StackResponse(
         stack=stack, status=status, end_time=float(t_stop), t=t, pose=blk[:, :, :3].copy(),
@@ -188,6 +234,7 @@ def _response(stack, status, t_stop, samples, events, summ, e0) -> StackResponse
         normal_state=ifc[:, :, 2].astype(int), tangential_state=ifc[:, :, 3].astype(int),
         energy=tail[:, 0].copy(), input_work=tail[:, 1].copy(), friction_loss=tail[:, 2].copy(),
         impact_loss=tail[:, 3].copy(), events=events, blocks=tuple(blocks), initial_energy=float(e0),
+        interfaces=tuple(interfaces),
     )
 
 
