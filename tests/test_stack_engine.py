@@ -308,3 +308,23 @@ def test_similarity_law():
     assert np.max(np.abs(a.rotation[grid_a, 1] - rot_b)) < 1e-8
     slide_b = np.interp(ta * math.sqrt(lam), b.t, b.sliding[:, 0])
     assert np.max(np.abs(lam * a.sliding[grid_a, 0] - slide_b)) < 1e-8 * lam
+
+
+@pytest.mark.parametrize("name", ["10a", "10b", "11a", "11b", "12a"])
+def test_paper_impact_law_matches_todays_solver(name):
+    """impact = "paper" (the paper's Eq. 1, θ̇⁺ = r θ̇⁻ with the pedestal's velocity unchanged) on
+    the statue on its pedestal, with the full normal force: today's results."""
+    case = case_named(name)
+    motion = paper_motion(case)
+    system, options = variant_setup(case, "pedestal")
+    options = dataclasses.replace(options, impact="paper", rtol=1e-12, atol=1e-14)
+    r, ref, dth, du = _compare(system, motion, duration=motion.duration, options=options)
+    assert r.status == ref.status
+    assert dth < 1e-8 and du < 1e-8
+    assert len(r.events[r.events[:, 2] == -1]) == len(ref.impacts) > 0
+
+
+def test_paper_normal_force_is_refused_for_stacks():
+    stack = Stack(blocks=(Block(width=0.3, height=1.2, mass=100.0),), interfaces=(Interface(),))
+    with pytest.raises(ValueError, match="normal_force"):
+        simulate_stack(stack, rocking.SinePulse(amplitude=3.0, frequency=1.0), options={"normal_force": "paper"})

@@ -26,6 +26,7 @@ from .kinematics import (
     P_MASS,
     P_MU_K,
     P_MU_S,
+    P_IMPACT_PAPER,
     P_OFFSET,
     P_RESTITUTION,
     end_gap,
@@ -212,6 +213,25 @@ def _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, h, loc, gravity
 
 
 @njit(cache=True)
+def _housner_ratio(P, ends, anchor, k, z):
+    """(r_H, I_O): Housner's ratio φ̇⁺/φ̇⁻ of block k alone landing on its anchor corner (the old
+    corner lifting), and its inertia about that corner, kg·m² (at φ = 0)."""
+    i = 3 * k
+    hu = P[k, P_HU]
+    # contact points along the upper block's bottom face (its own frame, centre at 0)
+    rx, _, _, _ = relative_pose(P, ends, anchor, k, z[i], z[i + 1], z[i + 2], 0.0, 0.0, 0.0)
+    x_new = ends[k, anchor[k], 1]
+    if ends[k, anchor[k], 0] != END_U:
+        x_new -= rx
+    x_old = ends[k, 1 - anchor[k], 1]
+    if ends[k, 1 - anchor[k], 0] != END_U:
+        x_old -= rx
+    m, J = P[k, P_MASS], P[k, P_INERTIA]
+    i_o = J + m * (x_new * x_new + hu * hu)
+    return (J + m * (x_new * x_old + hu * hu)) / i_o, i_o
+
+
+@njit(cache=True)
 def _housner_couple(P, ends, anchor, k, z, zd, extra):
     """The restitution couple of an impact on interface k (now anchored at the impacting end):
     (r − r_H)·I_O·φ̇⁻ on φ_k, so that with the block below held φ̇⁺ = r·φ̇⁻; r_H is the
@@ -221,20 +241,8 @@ def _housner_couple(P, ends, anchor, k, z, zd, extra):
         extra[i] = 0.0
     if math.isnan(r):
         return
-    i = 3 * k
-    hu = P[k, P_HU]
-    # contact points along the upper block's bottom face (its own frame, centre at 0), at φ = 0
-    rx, _, _, _ = relative_pose(P, ends, anchor, k, z[i], z[i + 1], z[i + 2], 0.0, 0.0, 0.0)
-    xs = np.empty(2)
-    for e in range(2):
-        x = ends[k, e, 1]
-        xs[e] = x if ends[k, e, 0] == END_U else x - rx
-    x_new = xs[anchor[k]]
-    x_old = xs[1 - anchor[k]]
-    m, J = P[k, P_MASS], P[k, P_INERTIA]
-    i_o = J + m * (x_new * x_new + hu * hu)
-    r_h = (J + m * (x_new * x_old + hu * hu)) / i_o
-    extra[i + 1] = (r - r_h) * i_o * zd[i + 1]
+    r_h, i_o = _housner_ratio(P, ends, anchor, k, z)
+    extra[3 * k + 1] = (r - r_h) * i_o * zd[3 * k + 1]
 
 
 @njit(cache=True)
@@ -786,45 +794,70 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
             for j in range(nz):
                 extra[j] = 0.0
         t_before = _kinetic_of(P, ends, anchor, z, zd)
-        # impulses are checked against the momentum scale of the impact, not the weight
-        m_tot = 0.0
-        for j in range(n):
-            m_tot += P[j, P_MASS]
-        tol_impulse = 1e-9 * math.sqrt(2.0 * m_tot * t_before)
-        z_pre, zd_pre, ends_pre, anchor_pre = z.copy(), zd.copy(), ends.copy(), anchor.copy()
-        code = select_mode(VELOCITY, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, -1, 0,
-                           tol_impulse, tol_rate, x_sel, lam_sel)
-        if code != SELECT_OK:
-            n_ev = _record(events, n_ev, t, k, EVENT_IMPACT, -1, 0, 0.0)
-            return STATUS_INCONSISTENT, d_impact, n_ev
-        # rest: an impact that leaves almost no rotation lands the block flat (ends Zeno sequences)
-        if geo[k] == FLAT and nstate[k] == ROCK and abs(x_sel[i + 1]) < rest_velocity:
-            z[:] = z_pre
-            zd[:] = zd_pre
-            ends[:, :, :] = ends_pre
-            anchor[:] = anchor_pre
-            for j in range(nz):
-                extra[j] = 0.0
+        if P[k, P_IMPACT_PAPER] > 0.5 and geo[k] == FLAT:
+            # the paper's Eq. 1: φ̇⁺ = r·φ̇⁻ about the new corner, every other interface's
+            # relative velocity unchanged (the pedestal keeps its u̇)
+            r = P[k, P_RESTITUTION]
+            if math.isnan(r):
+                r = max(0.0, _housner_ratio(P, ends, anchor, k, z)[0])
+            w = r * zd[i + 1]
+            zd[i] = 0.0
+            zd[i + 2] = 0.0
+            zd[i + 1] = w
+            if abs(w) < rest_velocity:
+                zd[i + 1] = 0.0
+                nstate[k] = FLAT
+            else:
+                nstate[k] = ROCK
+            tstate[k] = 0
+            t_after = _kinetic_of(P, ends, anchor, z, zd)
+            d_impact += t_before - t_after
+            n_ev = _record(events, n_ev, t, k, EVENT_IMPACT, nstate[k], tstate[k], t_before - t_after)
+            for j in range(n):
+                geo[j] = nstate[j]
+            impact_done = True
+        else:
+            impact_done = False
+        if not impact_done:
+            # impulses are checked against the momentum scale of the impact, not the weight
+            m_tot = 0.0
+            for j in range(n):
+                m_tot += P[j, P_MASS]
+            tol_impulse = 1e-9 * math.sqrt(2.0 * m_tot * t_before)
+            z_pre, zd_pre, ends_pre, anchor_pre = z.copy(), zd.copy(), ends.copy(), anchor.copy()
             code = select_mode(VELOCITY, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, -1, 0,
-                               tol_impulse, tol_rate, x_sel, lam_sel, k)
+                               tol_impulse, tol_rate, x_sel, lam_sel)
             if code != SELECT_OK:
                 n_ev = _record(events, n_ev, t, k, EVENT_IMPACT, -1, 0, 0.0)
                 return STATUS_INCONSISTENT, d_impact, n_ev
-        for j in range(nz):
-            zd[j] = x_sel[j]
-        t_after = _kinetic_of(P, ends, anchor, z, zd)
-        d_impact += t_before - t_after
-        for j in range(n):
-            geo[j] = nstate[j]
-        for j in range(n):
-            # exact zeros for what the impact froze
-            if nstate[j] >= ROCK:
-                zd[3 * j + 2] = 0.0
-                if tstate[j] == 0:
-                    zd[3 * j] = 0.0
-            if nstate[j] == FLAT:
-                zd[3 * j + 1] = 0.0
-        n_ev = _record(events, n_ev, t, k, EVENT_IMPACT, nstate[k], tstate[k], t_before - t_after)
+            # rest: an impact that leaves almost no rotation lands the block flat (ends Zeno sequences)
+            if geo[k] == FLAT and nstate[k] == ROCK and abs(x_sel[i + 1]) < rest_velocity:
+                z[:] = z_pre
+                zd[:] = zd_pre
+                ends[:, :, :] = ends_pre
+                anchor[:] = anchor_pre
+                for j in range(nz):
+                    extra[j] = 0.0
+                code = select_mode(VELOCITY, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, -1, 0,
+                                   tol_impulse, tol_rate, x_sel, lam_sel, k)
+                if code != SELECT_OK:
+                    n_ev = _record(events, n_ev, t, k, EVENT_IMPACT, -1, 0, 0.0)
+                    return STATUS_INCONSISTENT, d_impact, n_ev
+            for j in range(nz):
+                zd[j] = x_sel[j]
+            t_after = _kinetic_of(P, ends, anchor, z, zd)
+            d_impact += t_before - t_after
+            for j in range(n):
+                geo[j] = nstate[j]
+            for j in range(n):
+                # exact zeros for what the impact froze
+                if nstate[j] >= ROCK:
+                    zd[3 * j + 2] = 0.0
+                    if tstate[j] == 0:
+                        zd[3 * j] = 0.0
+                if nstate[j] == FLAT:
+                    zd[3 * j + 1] = 0.0
+            n_ev = _record(events, n_ev, t, k, EVENT_IMPACT, nstate[k], tstate[k], t_before - t_after)
         veto_k, veto_kind = -1, 0
     else:
         veto_k, veto_kind = -1, 0

@@ -33,6 +33,7 @@ from .kinematics import (
     P_FLOOR,
     P_HL,
     P_HU,
+    P_IMPACT_PAPER,
     P_INERTIA,
     P_MASS,
     P_MU_K,
@@ -46,9 +47,11 @@ STATUS_NAMES = ("completed", "overturned", "max_events", "inconsistent", "step_f
 _FLOOR_HALF_WIDTH = 1e300  # the floor's face has no end
 
 
-def pack(stack: Stack) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def pack(stack: Stack, impact: str = "coulomb") -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(P, ends, anchor, z0): the parameter table, the corners that make each interface's ends,
-    the anchors (left ends) and the interface coordinates at rest."""
+    the anchors (left ends) and the interface coordinates at rest. ``impact``: "coulomb" (the
+    impact routine of docs/theory/stack.md §6) or "paper" (φ̇⁺ = r·φ̇⁻, every other relative
+    velocity unchanged: the paper's Eq. 1)."""
     n = stack.n
     P = np.zeros((n, N_P))
     ends = np.zeros((n, 2, 2))
@@ -64,6 +67,7 @@ def pack(stack: Stack) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         P[k, P_BL] = 0.5 * lower.width if lower is not None else _FLOOR_HALF_WIDTH
         P[k, P_OFFSET] = block.offset
         P[k, P_FLOOR] = 1.0 if k == 0 else 0.0
+        P[k, P_IMPACT_PAPER] = 1.0 if impact == "paper" else 0.0
         if iface.friction is not None:
             P[k, P_MU_S] = iface.friction.mu_s
             P[k, P_MU_K] = iface.friction.mu_k
@@ -174,7 +178,12 @@ def simulate_stack(
         if not (math.isfinite(t_end) and t_end > 0):
             raise ValueError(f"simulation.duration must be a positive number (s), got {duration!r}")
     save_dt = options.save_dt or (float(getattr(motion, "dt", 0.0) or 0.0) or 0.01)
-    P, ends, anchor, z0 = pack(stack)
+    if options.normal_force != "full":
+        raise ValueError(
+            "simulation.normal_force = 'paper' (N = M g) belongs to the two-body model of rocking.simulate; "
+            "a stack always uses the contact forces it computes"
+        )
+    P, ends, anchor, z0 = pack(stack, options.impact)
     n = stack.n
     y0 = np.zeros(6 * n + 2)
     y0[: 3 * n] = z0
