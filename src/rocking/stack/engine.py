@@ -14,7 +14,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..excitation.signal import LOCAL_SIZE, local_value
+from ..excitation.signal import LOCAL_LINEAR, LOCAL_SIZE, local_value
 from ..integrators import dop853
 from .kinematics import (
     END_U,
@@ -360,6 +360,40 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
         if hs <= 1e-15 * max(1.0, t):
             t = t_lim
             continue
+        if _all_stuck(nstate, tstate) and loc[0] <= LOCAL_LINEAR and loc[LOCAL_SIZE] <= LOCAL_LINEAR:
+            # Everything flat and stuck, the floor motion linear in time on this piece (a record
+            # between samples, a ramp, nothing): the state cannot change and every guard, linear
+            # in the floor acceleration, is linear in time. Jump to the piece's end, or to the
+            # exact root of the first guard that reaches zero, without integrating.
+            guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0, held)
+            guards(P, ends, anchor, nstate, tstate, t_lim, y, loc, gravity, g1, held)
+            first = -1
+            x_first = 2.0
+            for j in range(ng):
+                if g0[j] > 0.0 and g1[j] <= 0.0:
+                    x = g0[j] / (g0[j] - g1[j])
+                    if x < x_first:
+                        x_first, first = x, j
+            t_to = t_lim if first < 0 else t + x_first * (t_lim - t)
+            while next_grid < n_grid and n_out < cap and next_grid * save_dt <= t_to:
+                if next_grid * save_dt >= t:
+                    _save_row(P, ends, anchor, nstate, tstate, next_grid * save_dt, y, gravity, slip0, d_impact,
+                              samples, n_out)
+                    n_out += 1
+                next_grid += 1
+            t = t_to
+            if first >= 0:
+                k_ev = first // N_GUARD_SLOTS
+                status, d_impact, n_ev = _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k_ev,
+                                                       first - k_ev * N_GUARD_SLOTS, tol_force, tol_rate,
+                                                       rest_velocity, extra, x_sel, lam_sel, events, n_ev, d_impact,
+                                                       summ, held)
+                _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity)
+                if n_out < cap:
+                    _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, n_out)
+                    n_out += 1
+            _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0])
+            continue
         err = _step(P, ends, anchor, nstate, tstate, t, y, hs, loc, gravity, K, y_new, rtol, atol, n_ctrl)
         if not (err <= 1.0) or not math.isfinite(err):
             h = hs * max(0.2, 0.9 * (err ** -0.125) if math.isfinite(err) and err > 0 else 0.2)
@@ -685,6 +719,14 @@ def _save_grid(P, ends, anchor, nstate, tstate, t, y, h, F, dense_ok, K, loc, gr
         n_out += 1
         next_grid += 1
     return n_out, next_grid
+
+
+@njit(cache=True)
+def _all_stuck(nstate, tstate):
+    for k in range(nstate.shape[0]):
+        if nstate[k] != FLAT or tstate[k] != 0:
+            return False
+    return True
 
 
 @njit(cache=True)
