@@ -193,3 +193,71 @@ def test_friction_without_a_static_coefficient_is_refused_at_once():
     """Found by the mutation run: static=None used to pass and fail later, in mu_s."""
     with pytest.raises(ValueError, match=r"friction\.static must be a number ≥ 0, got None"):
         rk.Friction(static=None)
+
+
+# ------------------------------------------------------------------------------------------------
+# models/transitions.py
+# ------------------------------------------------------------------------------------------------
+
+_SLENDER = rk.Statue(width=0.2, height=1.2, mass=50.0, restitution=0.8)
+
+
+def _top_ratio_of(impact, h=0.6, b=0.1):
+    """|Fx|/Fy of the impulse on the statue's base at one impact, from its momentum balance:
+    Fx = m2 (Δu̇ + h Δθ̇), Fy = m2 b (|θ̇⁺| + |θ̇⁻|) (the centre goes from −b|θ̇⁻| to +b|θ̇⁺|)."""
+    fx = (impact.u_dot_after - impact.u_dot_before) + h * (impact.theta_dot_after - impact.theta_dot_before)
+    return abs(fx) / (b * (abs(impact.theta_dot_after) + abs(impact.theta_dot_before)))
+
+
+@pytest.mark.parametrize("law", ["coulomb", "paper"])
+def test_top_friction_needed_at_an_impact_on_a_held_pedestal(law):
+    """On a pedestal the floor holds, the impulse on the statue's base needs
+    |Fx|/Fy = (h/b)(1 − r)/(1 + r) (oracle O19): here 6·0.2/1.8 = 2/3, more than rocking needs,
+    so it is the run's required_top_friction. Kills transitions.py:58-59 (the base impulse
+    lx = m2((u̇⁺ − u̇⁻) + h(θ̇⁺ − θ̇⁻)), ly = m2 b(|θ̇⁺| + |θ̇⁻|): + for −, × for /, y[4] for y[3])."""
+    pedestal = rk.Pedestal(mass=200.0, friction=rk.Friction(static=5.0, kinetic=5.0))
+    r = rk.simulate(rk.System(statue=_SLENDER, pedestal=pedestal), rk.SinePulse(amplitude=2.5, frequency=1.5),
+                    options=rk.Options(impact=law))
+    assert len(r.impacts) == 1
+    assert _top_ratio_of(r.impacts[0]) == pytest.approx(6 * 0.2 / 1.8, rel=1e-12)
+    assert r.summary()["required_top_friction"] == pytest.approx(6 * 0.2 / 1.8, rel=1e-12)
+
+
+def test_top_friction_needed_at_an_impact_that_sets_the_pedestal_sliding():
+    """The Coulomb law lets the floor impulse set a light pedestal sliding (u̇⁺ ≠ u̇⁻): the base
+    impulse then includes m2 Δu̇. Kills the sign mutants of transitions.py:58 that the held
+    pedestal cannot see (the h·Δθ̇ term alone would give 2/3)."""
+    pedestal = rk.Pedestal(mass=20.0, friction=rk.Friction(static=0.25, kinetic=0.2))
+    r = rk.simulate(rk.System(statue=_SLENDER, pedestal=pedestal), rk.SinePulse(amplitude=3.5, frequency=1.5))
+    (impact,) = r.impacts
+    assert impact.u_dot_after != impact.u_dot_before
+    assert r.summary()["required_top_friction"] == pytest.approx(_top_ratio_of(impact), rel=1e-12)
+    assert _top_ratio_of(impact) < 6 * 0.2 / 1.8 - 0.1
+
+
+def test_floor_friction_short_at_an_impact_is_reported_for_the_paper_law_only():
+    """The paper's law keeps a stuck pedestal stuck through the impact whatever floor impulse
+    that needs; when that exceeds μs the run says so. The Coulomb law lets the pedestal slide
+    instead, and says nothing. Kills transitions.py:56 (``and`` → ``or`` in floor_short) and
+    checks the count and the ratio the warning gives."""
+    pedestal = rk.Pedestal(mass=20.0, friction=rk.Friction(static=0.25, kinetic=0.2))
+    system, motion = rk.System(statue=_SLENDER, pedestal=pedestal), rk.SinePulse(amplitude=3.5, frequency=1.5)
+    paper = rk.simulate(system, motion, options=rk.Options(impact="paper"))
+    (impact,) = paper.impacts
+    assert impact.u_dot_before == impact.u_dot_after == 0.0 and impact.friction_needed > 0.25
+    short = [w for w in paper.warnings if "needed more floor friction" in w]
+    assert short == [f"1 impact(s) needed more floor friction than μs (up to {impact.friction_needed:.3f}); "
+                     "the paper's impact law ignores this"]
+    coulomb = rk.simulate(system, motion)
+    assert not [w for w in coulomb.warnings if "needed more floor friction" in w]
+
+
+def test_ordinary_events_are_consistent():
+    """Uplift, impact, exceeding α and the fall of a plain run all leave a strictly consistent
+    regime: no 'no regime was strictly consistent' warning. Kills transitions.py:32
+    (``ok = False`` as the default of the events that select no regime)."""
+    for system in (rk.System(statue=_SLENDER),
+                   rk.System(statue=_SLENDER, pedestal=rk.Pedestal(mass=20.0, friction=rk.Friction(static=0.2)))):
+        r = rk.simulate(system, rk.SinePulse(amplitude=3.5, frequency=1.5))
+        assert r.overturned
+        assert not [w for w in r.warnings if "strictly consistent" in w]
