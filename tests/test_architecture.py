@@ -16,6 +16,7 @@ FORBIDDEN = {
                    "runner"},
     "models": {"solver", "simulation", "results", "analyses", "io", "cli", "viz", "web", "report", "runner"},
     "solver": {"analyses", "io", "cli", "viz", "web", "report", "runner"},
+    "stack": {"analyses", "io", "cli", "viz", "web", "report", "runner"},
     "analyses": {"cli", "web"},
     "viz": {"cli", "web"},
 }

@@ -13,6 +13,7 @@ import rocking as rk
 from rocking.excitation.record import GroundMotion
 from rocking.io.config import Config, ConfigError, load_config
 from rocking.io.records import bundled_records, read_record
+from rocking.stack import Stack
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = sorted((ROOT / "examples").glob("*.toml"))
@@ -121,7 +122,7 @@ def test_examples_exist():
 def test_every_example_parses_into_specs(path):
     cfg = load_config(path)
     system, motion, options, duration = cfg.to_specs()
-    assert isinstance(system, rk.System)
+    assert isinstance(system, (rk.System, Stack))  # a stack file ([[blocks]]) gives a rocking.stack.Stack
     assert isinstance(options, rk.Options)
     assert duration is None or (duration > 0 and math.isfinite(duration))
     assert motion.pga > 0

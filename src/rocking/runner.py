@@ -11,30 +11,32 @@ import os
 from collections.abc import Mapping
 from typing import Any
 
-from .io.config import Config, load_config
+from .io.config import Config, StackConfig, load_config
 from .results.response import Response
 from .simulation import simulate
+from .stack import StackResponse, simulate_stack
 
 __all__ = ["run", "run_response"]
 
-ConfigLike = str | os.PathLike[str] | Mapping[str, Any] | Config
+ConfigLike = str | os.PathLike[str] | Mapping[str, Any] | Config | StackConfig
 
 
-def run_response(config: ConfigLike) -> tuple[Config, Response]:
+def run_response(config: ConfigLike) -> tuple[Config, Response] | tuple[StackConfig, StackResponse]:
     """Load a configuration and simulate it.
 
     Parameters
     ----------
-    config : path-like, str, mapping or Config
+    config : path-like, str, mapping, Config or StackConfig
         A TOML file, a dict of the same shape (relative record paths against the
-        current directory), or an already loaded :class:`~rocking.io.config.Config`.
+        current directory), or an already loaded configuration.
 
     Returns
     -------
-    config : Config
+    config : Config or StackConfig
         The validated configuration.
-    response : Response
-        The full result (time series, events, summary).
+    response : Response or rocking.stack.StackResponse
+        The full result (time series, events, summary); a stack's (``[[blocks]]``) comes from
+        :func:`rocking.stack.simulate_stack`.
 
     Raises
     ------
@@ -45,6 +47,8 @@ def run_response(config: ConfigLike) -> tuple[Config, Response]:
     """
     cfg = load_config(config)
     system, motion, options, duration = cfg.to_specs()
+    if isinstance(cfg, StackConfig):
+        return cfg, simulate_stack(system, motion, duration=duration, options=options)
     return cfg, simulate(system, motion, duration=duration, options=options)
 
 
@@ -64,6 +68,8 @@ def run(config: ConfigLike) -> dict[str, Any]:
         ``residual_sliding`` (m, of the body sliding on the floor), ``impacts``,
         ``first_rocking_time`` and ``first_sliding_time`` (s),
         ``required_top_friction`` and more; times are None when the event did not
-        happen.
+        happen. A stack's summary (:meth:`rocking.stack.StackResponse.summary`) describes the
+        top block at the top level, and every block and interface in ``blocks`` and
+        ``interfaces``.
     """
     return run_response(config)[1].summary()

@@ -1,6 +1,7 @@
 """The configuration reference (``docs/configuration.md``), generated from the schema.
 
-Every table of a run file (``rocking run``, ``report``, ``animate``) and of the three study files
+Every table of a run file (``rocking run``, ``report``, ``animate``), of a stack file
+(``[[blocks]]``, ``rocking run``) and of the three study files
 (``rocking design``, ``fragility``, ``spectrum``) is read off the pydantic models that validate
 them: key, type, default and allowed values come from the models themselves, so the page
 cannot drift from what the loader accepts. Only the unit and the meaning of each key are written
@@ -37,6 +38,12 @@ MEANING: dict[str, tuple[str, str]] = {
                             "on the floor"),
     "Config.motion": ("", "the floor motion: a record, a harmonic motion or a pulse"),
     "Config.simulation": ("", "run length, model options and solver tolerances"),
+    "StackConfig.blocks": ("", "the blocks from the floor up, one [[blocks]] table each (at least one)"),
+    "StackConfig.interfaces": ("", "the contacts from the floor up, one [[interfaces]] table under each block: "
+                                   "floor–block 1, block 1–block 2, …"),
+    "StackConfig.motion": ("", "the floor motion, as in run files"),
+    "StackConfig.simulation": ("", "as in run files, but normal_force and impact keep their defaults (a stack "
+                                   "has its own contact model)"),
     "_Study.statue": ("", "the block that rocks"),
     "_Study.pedestal": ("", "its pedestal (needed by the design; optional elsewhere)"),
     "_Study.simulation": ("", "model options and tolerances (not duration nor free_time_limit: the study's "
@@ -57,6 +64,20 @@ MEANING: dict[str, tuple[str, str]] = {
     "PedestalConfig.friction": ("–", "friction of the pedestal on the floor"),
     "PedestalConfig.width": ("m", "the pedestal's width (for the uplift check only)"),
     "PedestalConfig.height": ("m", "the pedestal's height (for the uplift check only)"),
+    # [[blocks]], [[interfaces]]
+    "BlockConfig.name": ("", "names the block in the summary, the tables and the CSV columns (each its own); "
+                             "omitted: \"block k\""),
+    "BlockConfig.width": ("m", "B, the width of the block"),
+    "BlockConfig.height": ("m", "H, the height of the block"),
+    "BlockConfig.mass": ("kg", "the block's mass"),
+    "BlockConfig.inertia": ("kg·m²", "moment of inertia about its centre of mass; omitted: a uniform block, "
+                                     "m (B² + H²)/12"),
+    "BlockConfig.offset": ("m", "its centre relative to the centre of the block below (block 1: to the floor's "
+                                "origin), towards +x; the two must overlap: |offset| < (B + B below)/2"),
+    "InterfaceConfig.friction": ("–", "Coulomb friction between the block and what it stands on; omitted: it "
+                                      "never slips"),
+    "InterfaceConfig.restitution": ("–", "r: relative angular velocity after/before an impact on the block's other "
+                                         "corner; omitted: a plastic impact, which gives Housner's value"),
     # friction tables
     "FrictionConfig.static": ("–", "μs, static Coulomb friction"),
     "FrictionConfig.kinetic": ("–", "μk ≤ μs, kinetic Coulomb friction; omitted: μk = μs"),
@@ -162,6 +183,9 @@ MEANING: dict[str, tuple[str, str]] = {
 TABLES: tuple[tuple[str, type[BaseModel], str], ...] = (
     ("Run files (`rocking run`, `report`, `animate`)", run_config.Config,
      "One statue, optionally on a pedestal, under one floor motion."),
+    ("Stack files (`rocking run`)", run_config.StackConfig,
+     "A stack of blocks from the floor up (`rocking.stack`, docs/theory/stack.md) under one floor motion, in "
+     "place of `[statue]` and `[pedestal]`; `[motion]` and `[simulation]` are those of run files."),
     ("`rocking design`", studies.DesignStudy, "The pedestal's floor friction (and mass) over a set of motions. "
      "`[statue]`, `[pedestal]` and `[simulation]` are those of run files."),
     ("`rocking fragility`", studies.FragilityStudy, "Fragility curves by incremental dynamic analysis, with the "
@@ -194,6 +218,8 @@ def _type_name(annotation: Any) -> str:
         names = [_type_name(a) for a in args if a is not type(None)]
         return " or ".join(dict.fromkeys(names))
     if origin is list:
+        if args and _models(args[0]):
+            return "array of tables"
         return f"array of {_type_name(args[0])}" if args else "array"
     if isinstance(annotation, type) and issubclass(annotation, BaseModel):
         return "grid table" if annotation is studies.GridConfig else "table"
@@ -286,8 +312,10 @@ def rows(model: type[BaseModel], prefix: str = "") -> Iterator[tuple[str, str, d
             "key": key, "type": _type_name(annotation), "default": _default(info), "unit": unit or "",
             "allowed": ", ".join(allowed + _bounds(annotation, info)), "meaning": meaning,
         })
+        # an array of tables is written [[key]] in TOML: its label carries one pair of brackets
+        array = typing.get_origin(annotation) is list
         for sub in _models(annotation):
-            inner.append((f"{prefix}{key}", sub))
+            inner.append((f"[{prefix}{key}]" if array else f"{prefix}{key}", sub))
     yield prefix.rstrip("."), model.__name__, own  # type: ignore[misc]
     for name, sub in inner:
         label = name
@@ -315,7 +343,8 @@ def reference() -> str:
     for heading, model, sentence in TABLES:
         out += [f"## {heading}", "", sentence, ""]
         for table, name, table_rows in rows(model):
-            if name in printed and name not in ("Config", "DesignStudy", "FragilityStudy", "SpectrumStudy"):
+            if name in printed and name not in ("Config", "StackConfig", "DesignStudy", "FragilityStudy",
+                                                "SpectrumStudy"):
                 continue
             printed.add(name)
             if name == "GridConfig":

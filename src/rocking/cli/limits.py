@@ -63,7 +63,7 @@ def preflight(cfg: Any, *, out: Path | None = None) -> int:
 
     Parameters
     ----------
-    cfg : rocking.io.config.Config
+    cfg : rocking.io.config.Config or StackConfig
     out : path, optional
         The ``--out`` folder, whose file system must hold the outputs.
 
@@ -79,12 +79,24 @@ def preflight(cfg: Any, *, out: Path | None = None) -> int:
     rocking.io.output.OutputSpaceError
         Outputs larger than the free space where they go.
     """
+    from ..io.config import StackConfig
     from ..io.output import check_output_space, planned_samples
-    from ..simulation import prepare
+    from ..simulation import ResourceLimitError, prepare
 
     system, motion, options, duration = cfg.to_specs()
-    prepare(system, motion, duration=duration, options=options)  # the memory check of simulate()
     n = planned_samples(motion, options, duration)
+    if isinstance(cfg, StackConfig):
+        if n > options.max_samples:  # the check prepare() makes for one statue
+            raise ResourceLimitError(
+                f"simulation.save_dt: the run would store {n:.3g} samples, over simulation.max_samples = "
+                f"{options.max_samples:.3g}; raise simulation.save_dt, shorten simulation.duration, or raise "
+                "simulation.max_samples (--max-samples on the command line)")
+        if out is not None:
+            from ..io.stack_output import check_stack_output_space
+
+            check_stack_output_space(n, len(cfg.blocks), out, hint=_SERIES_HINT)
+        return n
+    prepare(system, motion, duration=duration, options=options)  # the memory check of simulate()
     if out is not None:
         check_output_space(n, out, hint=_SERIES_HINT)
     return n

@@ -2,7 +2,7 @@
 
 Commands::
 
-    rocking run CONFIG.toml [--json] [--out DIR]   simulate a configuration
+    rocking run CONFIG.toml [--json] [--out DIR]   simulate a configuration (a statue, or a stack)
     rocking records [--json]                       list the bundled accelerograms
     rocking info RECORD [--json]                   properties of one record
 
@@ -32,7 +32,7 @@ from typer._click import exceptions as click_exceptions  # typer vendors click
 from typer._click import utils as click_utils
 
 from .. import __version__
-from ..io.config import ConfigError, load_config
+from ..io.config import ConfigError, StackConfig, load_config
 from ..io.output import OUTPUT_FILES, OutputSpaceError, check_output_space, summary_json, write_outputs
 from ..io.records import RecordError, UnitsConflictError, bundled_records, read_record
 from ..runner import run_response
@@ -110,7 +110,8 @@ def run_command(
         typer.Option(
             "--out",
             "-o",
-            help="Folder for timeseries.csv, timeseries.nc, summary.json and response.png.",
+            help="Folder for timeseries.csv, timeseries.nc, summary.json and response.png (a stack: "
+            "timeseries.csv, summary.json and response.png).",
             show_default=False,
         ),
     ] = None,
@@ -119,7 +120,7 @@ def run_command(
     ] = False,
     max_samples: Annotated[int | None, MAX_SAMPLES_OPTION] = None,
 ) -> None:
-    """Simulate CONFIG and print the summary (SI units, radians)."""
+    """Simulate CONFIG and print the summary (SI units, radians; a stack's per block and interface)."""
     cfg = with_max_samples(load_config(config), max_samples)  # every input error surfaces here
     if out is not None and out.exists() and not out.is_dir():
         raise InputError(f"--out: {out} exists and is not a directory")
@@ -129,10 +130,18 @@ def run_command(
         _check_parent(out)  # `--out afile/sub`: refused now, not after the run
     if animate and out is None:
         raise InputError("--animate needs --out DIR to write animation.gif into")
+    stack = isinstance(cfg, StackConfig)
+    if animate and stack:
+        raise InputError("--animate: a stack of blocks ([[blocks]]) cannot be animated yet; leave --animate out")
     preflight(cfg, out=out)  # memory and disk limits, before the solver is compiled or run
-    ensure_compiled()  # says so on stderr when the first run on this machine must compile
+    if not stack:
+        ensure_compiled()  # says so on stderr when the first run on this machine must compile
     with delayed_spinner(f"simulating {config.name}", console=_stderr()):
         cfg, response = run_response(cfg)
+    if stack:
+        from .stack_run import show_stack_run
+
+        return show_stack_run(cfg, response, config, out=out, as_json=as_json)
     summary = response.summary()
     if out is not None:
         # the exact count now (events add rows): still nothing written if it does not fit

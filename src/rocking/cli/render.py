@@ -12,7 +12,7 @@ from rich.table import Table
 
 from ..constants import STANDARD_GRAVITY
 
-__all__ = ["record_info", "record_table", "summary_table"]
+__all__ = ["outcome_markup", "record_info", "record_table", "summary_table"]
 
 
 def _time(x: float | None) -> str:
@@ -23,6 +23,16 @@ def _num(x: float | None, fmt: str = ".4g") -> str:
     if x is None or (isinstance(x, float) and not math.isfinite(x)):
         return "—"
     return format(x, fmt)
+
+
+def outcome_markup(summary: Mapping[str, Any]) -> str:
+    """The verdict of a run as rich markup: red if it overturned, yellow if undetermined, else green."""
+    text = summary.get("verdict") or ("overturned" if summary["overturned"] else "did not overturn")
+    if summary["overturned"]:
+        return f"[bold red]{escape(text)}[/]"
+    if text.startswith("undetermined"):
+        return f"[bold yellow]{escape(text)}[/]"
+    return f"[bold green]{escape(text)}[/]"
 
 
 def summary_table(summary: Mapping[str, Any], *, title: str | None = None) -> Table:
@@ -39,14 +49,7 @@ def summary_table(summary: Mapping[str, Any], *, title: str | None = None) -> Ta
     table = Table(title=escape(title) if title else None, show_header=False, title_justify="left")
     table.add_column("quantity", style="bold")
     table.add_column("value")
-    text = s.get("verdict") or ("overturned" if s["overturned"] else "did not overturn")
-    if s["overturned"]:
-        outcome = f"[bold red]{escape(text)}[/]"
-    elif text.startswith("undetermined"):
-        outcome = f"[bold yellow]{escape(text)}[/]"
-    else:
-        outcome = f"[bold green]{escape(text)}[/]"
-    table.add_row("outcome", outcome)
+    table.add_row("outcome", outcome_markup(s))
     table.add_row("|θ| first exceeded α", _time(s["exceeded_alpha_time"]))
     ratio = s.get("peak_rotation_over_alpha")
     ratio_text = f" = {_num(ratio, '.3f')} α" if ratio is not None else ""

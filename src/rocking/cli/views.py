@@ -30,6 +30,7 @@ def register(app: typer.Typer) -> None:
         from ..solver.warmup import ensure_compiled
 
         cfg = with_max_samples(load_config(config), max_samples)
+        _refuse_stack(cfg, config, "report")
         _check_out_folder(out)  # before simulating: a run must not end in FileExistsError
         preflight(cfg)  # the saved series within simulation.max_samples, before compiling
         ensure_compiled()
@@ -62,6 +63,7 @@ def register(app: typer.Typer) -> None:
         if speed <= 0 or fps <= 0:
             raise ValueError(f"--speed and --fps must be positive, got {speed} and {fps}")
         cfg = with_max_samples(load_config(config), max_samples)
+        _refuse_stack(cfg, config, "animation")
         hint = "raise --speed to {speed} or more, lower --fps, or raise --max-frames"
         # everything that would stop the writing, found before the simulation
         if out.is_dir():
@@ -88,6 +90,16 @@ def register(app: typer.Typer) -> None:
             if os.path.exists(tmp):
                 os.unlink(tmp)
         typer.echo(f"wrote {out}")
+
+
+def _refuse_stack(cfg, config: Path, what: str) -> None:
+    """A stack of blocks has no report nor animation yet: say so, and what to run instead."""
+    from ..io.config import StackConfig
+    from .main import InputError
+
+    if isinstance(cfg, StackConfig):
+        raise InputError(f"{config}: a stack of blocks ([[blocks]]) has no {what} yet; "
+                         f"`rocking run {config} --out DIR` writes its summary, time series and figure")
 
 
 def _check_out_folder(out: Path) -> None:

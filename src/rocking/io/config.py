@@ -35,6 +35,30 @@ and optionally ``units`` and ``format`` (see :func:`rocking.io.records.read_reco
 ``amplitude`` (m/s²) and ``frequency`` (Hz) or, for a rectangle, ``width`` (s); a sine
 pulse also takes ``phase`` (rad) and a Ricker wavelet ``center`` (s).
 
+A stack of blocks (:mod:`rocking.stack`) replaces ``[statue]`` and ``[pedestal]`` by one
+``[[blocks]]`` table per block and one ``[[interfaces]]`` table per contact, both from the floor
+up; ``[motion]`` and ``[simulation]`` are as above::
+
+    [[blocks]]                # block 1, on the floor
+    name = "pedestal"
+    width = 0.8               # m
+    height = 0.5              # m
+    mass = 300.0              # kg
+    inertia = 25.0            # kg·m², optional; default m (B² + H²)/12
+    offset = 0.0              # m, optional: centre relative to the centre of the block below
+    [[blocks]]                # block 2, on block 1
+    name = "statue"
+    width = 0.3
+    height = 1.2
+    mass = 100.0
+    [[interfaces]]            # floor–pedestal
+    friction = { static = 0.3, kinetic = 0.25 }   # omitted: never slips
+    [[interfaces]]            # pedestal–statue
+    friction = { static = 0.5, kinetic = 0.4 }
+    restitution = 0.8         # optional; omitted: the rule that gives Housner's value
+
+:func:`load_config` gives a :class:`StackConfig` for such a file (a :class:`Config` otherwise).
+
 Every problem raises :class:`ConfigError`, one line that names the file and the
 dotted field, e.g. ``cfg.toml: statue.width: must be > 0, got -1``.
 """
@@ -72,9 +96,10 @@ from ..excitation.harmonic import Harmonic
 from ..excitation.pulses import CosinePulse, RectanglePulse, RickerPulse, SinePulse
 from ..models.bodies import Pedestal, Statue, System
 from ..simulation import Options
+from ..stack.model import Block, Interface, Stack
 from .records import RecordError, UnitsConflictError, bundled_records, read_record, units_to_si
 
-__all__ = ["Config", "ConfigError", "load_config"]
+__all__ = ["Config", "ConfigError", "StackConfig", "load_config"]
 
 _DEFAULTS = Options()  # the API's defaults are the config's defaults: one source of truth
 
@@ -300,18 +325,9 @@ class SimulationConfig(_Section):
     max_events: Annotated[int, Field(ge=1)] = _DEFAULTS.max_events
 
 
-class Config(_Section):
-    """A validated run configuration (see the module docstring for the file layout).
-
-    Build it with :func:`load_config`, which also resolves and reads a record so that
-    every problem surfaces at load time; :meth:`to_specs` gives what
-    :func:`rocking.simulate` takes.
-    """
-
-    statue: StatueConfig
-    pedestal: PedestalConfig | None = None
-    motion: MotionConfig
-    simulation: SimulationConfig = SimulationConfig()
+class _RunConfig(_Section):
+    """What the run files share: building ``[motion]`` and ``[simulation]``, and where the file
+    came from. The subclasses declare the tables (in the order the reference lists them)."""
 
     # Where the config came from: for error messages and for relative record paths.
     _source: str | None = PrivateAttr(default=None)
@@ -339,50 +355,10 @@ class Config(_Section):
             return None
         return _resolve_record_path(self.motion.path, self.base_dir, self._source)
 
-    def to_specs(self) -> tuple[System, Any, Options, float]:
-        """Build the API objects.
-
-        Returns
-        -------
-        system : rocking.System
-        motion : rocking motion
-            Harmonic, a pulse, or a :class:`~rocking.excitation.record.GroundMotion`.
-        options : rocking.Options
-        duration : float or None
-            ``simulation.duration`` (s), or None: the motion, then free motion until everything
-            is at rest (see :func:`rocking.simulate`).
-
-        Raises
-        ------
-        ConfigError
-            For any value the API refuses (e.g. a record file that cannot be read);
-            the message names the file and the field.
-        """
-        src = self._source
-        with _field("statue", src):
-            top = self.statue.friction.to_spec() if self.statue.friction else None
-            statue = Statue(
-                width=self.statue.width,
-                height=self.statue.height,
-                mass=self.statue.mass,
-                restitution=self.statue.restitution,
-                friction=top,
-            )
-        pedestal = None
-        if self.pedestal is not None:
-            with _field("pedestal", src):
-                pedestal = Pedestal(
-                    mass=self.pedestal.mass,
-                    friction=self.pedestal.friction.to_spec(),
-                    width=self.pedestal.width,
-                    height=self.pedestal.height,
-                )
-        with _field(None, src):
-            system = System(statue=statue, pedestal=pedestal)
-        motion = self._motion_spec()
-        sim = self.simulation
+    def _options(self) -> Options:
+        sim, src = self.simulation, self._source
         with _field("simulation", src):
-            options = Options(
+            return Options(
                 gravity=sim.gravity,
                 normal_force=sim.normal_force,
                 impact=sim.impact,
@@ -395,7 +371,6 @@ class Config(_Section):
                 free_time_limit=sim.free_time_limit,
                 max_samples=sim.max_samples,
             )
-        return system, motion, options, sim.duration
 
     def _motion_spec(self) -> Any:
         m, src = self.motion, self._source
@@ -470,6 +445,152 @@ class Config(_Section):
                             source=record.source, units=record.units, meta=dict(record.meta))
 
 
+class Config(_RunConfig):
+    """A validated run configuration of one statue (see the module docstring for the file layout).
+
+    Build it with :func:`load_config`, which also resolves and reads a record so that
+    every problem surfaces at load time; :meth:`to_specs` gives what
+    :func:`rocking.simulate` takes.
+    """
+
+    statue: StatueConfig
+    pedestal: PedestalConfig | None = None
+    motion: MotionConfig
+    simulation: SimulationConfig = SimulationConfig()
+
+    def to_specs(self) -> tuple[System, Any, Options, float | None]:
+        """Build the API objects.
+
+        Returns
+        -------
+        system : rocking.System
+        motion : rocking motion
+            Harmonic, a pulse, or a :class:`~rocking.excitation.record.GroundMotion`.
+        options : rocking.Options
+        duration : float or None
+            ``simulation.duration`` (s), or None: the motion, then free motion until everything
+            is at rest (see :func:`rocking.simulate`).
+
+        Raises
+        ------
+        ConfigError
+            For any value the API refuses (e.g. a record file that cannot be read);
+            the message names the file and the field.
+        """
+        src = self._source
+        with _field("statue", src):
+            top = self.statue.friction.to_spec() if self.statue.friction else None
+            statue = Statue(
+                width=self.statue.width,
+                height=self.statue.height,
+                mass=self.statue.mass,
+                restitution=self.statue.restitution,
+                friction=top,
+            )
+        pedestal = None
+        if self.pedestal is not None:
+            with _field("pedestal", src):
+                pedestal = Pedestal(
+                    mass=self.pedestal.mass,
+                    friction=self.pedestal.friction.to_spec(),
+                    width=self.pedestal.width,
+                    height=self.pedestal.height,
+                )
+        with _field(None, src):
+            system = System(statue=statue, pedestal=pedestal)
+        return system, self._motion_spec(), self._options(), self.simulation.duration
+
+
+class BlockConfig(_Section):
+    """``[[blocks]]``: name, width and height (m), mass (kg), optional inertia (kg·m²) and offset (m)."""
+
+    name: Annotated[str, Field(min_length=1)] | None = None
+    width: Positive
+    height: Positive
+    mass: Positive
+    inertia: Positive | None = None
+    offset: float = 0.0
+
+
+class InterfaceConfig(_Section):
+    """``[[interfaces]]``: friction (omitted: never slips) and restitution (omitted: Housner's rule)."""
+
+    friction: FrictionConfig | None = None
+    restitution: Annotated[float, Field(ge=0, le=1)] | None = None
+
+
+class StackConfig(_RunConfig):
+    """A validated run configuration of a stack of blocks (``[[blocks]]``, ``[[interfaces]]``).
+
+    Built by :func:`load_config` for a file with ``[[blocks]]``; :meth:`to_specs` gives what
+    :func:`rocking.stack.simulate_stack` takes.
+    """
+
+    blocks: Annotated[list[BlockConfig], Field(min_length=1)]
+    interfaces: list[InterfaceConfig]
+    motion: MotionConfig
+    simulation: SimulationConfig = SimulationConfig()
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """The blocks' names, from the floor up ("block k" for a block without one)."""
+        return tuple(b.name or f"block {i + 1}" for i, b in enumerate(self.blocks))
+
+    def to_specs(self) -> tuple[Stack, Any, Options, float | None]:
+        """Build the API objects: ``(stack, motion, options, duration)``, as :meth:`Config.to_specs`
+        but with a :class:`rocking.stack.Stack` in place of the system.
+
+        Raises
+        ------
+        ConfigError
+            For a stack the engine cannot take (interfaces not one per block, blocks that do not
+            overlap, a repeated name, the paper's normal force); the message
+            names the file and the field.
+        """
+        src = self._source
+        self._check_stack()
+        blocks = []
+        for i, b in enumerate(self.blocks):
+            with _field(f"blocks[{i}]", src):
+                blocks.append(Block(width=b.width, height=b.height, mass=b.mass, inertia=b.inertia,
+                                    offset=b.offset, name=b.name or ""))
+        interfaces = []
+        for i, f in enumerate(self.interfaces):
+            with _field(f"interfaces[{i}]", src):
+                interfaces.append(Interface(friction=f.friction.to_spec() if f.friction else None,
+                                            restitution=f.restitution))
+        with _field(None, src):
+            stack = Stack(blocks=tuple(blocks), interfaces=tuple(interfaces))
+        return stack, self._motion_spec(), self._options(), self.simulation.duration
+
+    def _check_stack(self) -> None:
+        """What :class:`rocking.stack.Stack` refuses, said with the fields of the file."""
+        src, names, blocks = self._source, self.names, self.blocks
+        n, m = len(blocks), len(self.interfaces)
+        if m != n:
+            need = f"{n} blocks need {n} interfaces" if n > 1 else "1 block needs 1 interface"
+            contacts = ", ".join(f"{below}–{name}" for below, name in zip(("floor",) + names[:-1], names))
+            raise ConfigError([("interfaces", f"{need}, one [[interfaces]] per block from the floor up "
+                                f"({contacts}), got {m}")], src)
+        seen: dict[str, int] = {}
+        for i, name in enumerate(names):
+            if name in seen:
+                raise ConfigError([(f"blocks[{i}].name", f"{name!r} is already the name of blocks[{seen[name]}]; "
+                                    "the summary and the time series tell the blocks apart by name")], src)
+            seen[name] = i
+        for i in range(1, n):
+            upper, lower = blocks[i], blocks[i - 1]
+            limit = 0.5 * (upper.width + lower.width)
+            if not abs(upper.offset) < limit:
+                raise ConfigError([(f"blocks[{i}].offset", f"leaves no overlap with blocks[{i - 1}] ({names[i - 1]}) "
+                                    f"below: |offset| must be < (width + width below)/2 = {limit:g} m, "
+                                    f"got {_show(upper.offset)}")], src)
+        value = self.simulation.normal_force
+        if value != _DEFAULTS.normal_force:
+            raise ConfigError([("simulation.normal_force", f"{value!r} (N = M g) is a model option of the "
+                                "single-statue solver; a stack uses the contact forces it computes: remove it")], src)
+
+
 def _units_conflict(exc: UnitsConflictError, key: str) -> str:
     """The reader's units contradiction in the words of the config file."""
     where = f"{exc.path}: line {exc.line}" if exc.line is not None else str(exc.path)
@@ -481,16 +602,16 @@ def _units_conflict(exc: UnitsConflictError, key: str) -> str:
 
 # ----------------------------------------------------------------------------- loading
 def load_config(
-    config: str | os.PathLike[str] | Mapping[str, Any] | Config,
+    config: str | os.PathLike[str] | Mapping[str, Any] | Config | StackConfig,
     *,
     base_dir: str | os.PathLike[str] | None = None,
-) -> Config:
+) -> Config | StackConfig:
     """Read and validate a run configuration.
 
     Parameters
     ----------
-    config : path-like, str, mapping or Config
-        A TOML file, or a dict with the same tables. A :class:`Config` is returned
+    config : path-like, str, mapping, Config or StackConfig
+        A TOML file, or a dict with the same tables. A loaded configuration is returned
         unchanged.
     base_dir : path-like, optional
         Folder for relative record paths; default: the TOML file's folder, or the
@@ -498,8 +619,9 @@ def load_config(
 
     Returns
     -------
-    Config
-        Validated; a record has been found and read once (so a bad file fails here).
+    Config or StackConfig
+        Validated (a :class:`StackConfig` for a file with ``[[blocks]]``); a record has been
+        found and read once (so a bad file fails here).
 
     Raises
     ------
@@ -508,7 +630,7 @@ def load_config(
         a record that cannot be found or read. The message names the file and the
         dotted field.
     """
-    if isinstance(config, Config):
+    if isinstance(config, (Config, StackConfig)):
         return config
     if isinstance(config, Mapping):
         source, data = None, config
@@ -521,14 +643,30 @@ def load_config(
         raise ConfigError(
             [(None, f"a config is a TOML path or a dict, got {type(config).__name__}")]
         )
+    model = _run_model(data, source)
     try:
-        cfg = Config.model_validate(data)
+        cfg = model.model_validate(data)
     except ValidationError as exc:
-        raise ConfigError([_describe(err) for err in exc.errors()], source) from None
+        raise ConfigError([_describe(err, model) for err in exc.errors()], source) from None
     cfg._source = source
     cfg._base_dir = folder.resolve()
     cfg.to_specs()  # surface record and spec errors now, not halfway through a batch
     return cfg
+
+
+def _run_model(data: Mapping[str, Any], source: str | None) -> type[Config] | type[StackConfig]:
+    """:class:`StackConfig` for a file with ``[[blocks]]`` or ``[[interfaces]]``, else :class:`Config`."""
+    if not isinstance(data, Mapping):
+        return Config  # pydantic says what is wrong
+    stack = [k for k in ("blocks", "interfaces") if k in data]
+    if not stack:
+        return Config
+    single = [f"[{k}]" for k in ("statue", "pedestal") if k in data]
+    if single:
+        raise ConfigError([(stack[0], f"[[{stack[0]}]] describes a stack, which cannot also have "
+                            f"{' or '.join(single)}: give either [statue] (and [pedestal]) or [[blocks]] and "
+                            "[[interfaces]]")], source)
+    return StackConfig
 
 
 def _read_toml(path: Path, source: str) -> dict[str, Any]:
@@ -603,17 +741,27 @@ def _loc_to_field(loc: tuple[Any, ...]) -> str:
     parts = list(loc)
     if len(parts) > 1 and parts[0] == "motion" and parts[1] in _MOTION_MODELS:
         del parts[1]
-    # a key with control characters ("\r") is shown quoted, or it would be invisible
-    return ".".join(str(p) if str(p) and str(p).isprintable() else repr(str(p)) for p in parts)
+    # a key with control characters ("\r") is shown quoted, or it would be invisible; an entry of
+    # an array of tables as [i]: blocks[1].width
+    out = ""
+    for p in parts:
+        if isinstance(p, int):
+            out += f"[{p}]"
+        else:
+            out += ("." if out else "") + (str(p) if str(p) and str(p).isprintable() else repr(str(p)))
+    return out
 
 
-def _model_at(loc: tuple[Any, ...]) -> type[BaseModel] | None:
+def _model_at(loc: tuple[Any, ...], root: type[BaseModel] = Config) -> type[BaseModel] | None:
     """The model that owns the keys of the table at ``loc`` (for "did you mean")."""
-    model: type[BaseModel] | None = Config
+    model: type[BaseModel] | None = root
     i = 0
     while model is not None and i < len(loc):
         key = loc[i]
-        if model is Config and key == "motion":
+        if isinstance(key, int):  # an entry of an array of tables: the same model
+            i += 1
+            continue
+        if model is root and key == "motion":
             tag = loc[i + 1] if i + 1 < len(loc) else None
             model = _MOTION_MODELS.get(tag)  # type: ignore[arg-type]
             i += 2
@@ -653,15 +801,18 @@ _TYPE_WORDS = {
 }
 
 
-def _describe(err: Mapping[str, Any]) -> tuple[str | None, str]:
-    """One pydantic error -> (dotted field, message in plain words)."""
+def _describe(err: Mapping[str, Any], root: type[BaseModel] | None = None) -> tuple[str | None, str]:
+    """One pydantic error -> (dotted field, message in plain words); ``root`` is the run file's
+    model (:class:`Config` or :class:`StackConfig`), None for the other files."""
     kind, loc, ctx = err["type"], tuple(err["loc"]), err.get("ctx") or {}
     value = err.get("input")
     field = _loc_to_field(loc) or None
     if kind == "missing":
+        if loc == ("statue",) and root is Config:
+            return field, "missing (required); or describe a stack of blocks with [[blocks]] and [[interfaces]]"
         return field, "missing (required)"
     if kind == "extra_forbidden":
-        owner = _model_at(loc[:-1])
+        owner = _model_at(loc[:-1], root or Config)
         known = list(owner.model_fields) if owner is not None else []
         close = difflib.get_close_matches(str(loc[-1]), known, n=1, cutoff=0.6)
         hint = f"; did you mean {close[0]!r}?" if close else (
@@ -682,8 +833,10 @@ def _describe(err: Mapping[str, Any]) -> tuple[str | None, str]:
         return field, f"must be a finite number, got {_show(value)}"
     if kind == "literal_error":
         return field, f"must be one of {ctx['expected']}, got {_show(value)}"
-    if kind == "string_too_short":
+    if kind in ("string_too_short", "too_short"):
         return field, "must not be empty"
+    if kind == "list_type" and loc in (("blocks",), ("interfaces",)):
+        return field, f"must be an array of tables (one [[{loc[0]}]] per entry), got {_show(value)}"
     if kind in _TYPE_WORDS:
         return field, f"must be {_TYPE_WORDS[kind]}, got {_show(value)}"
     msg = str(err["msg"])

@@ -26,7 +26,7 @@ from ..models.regimes import Regime
 
 __all__ = [
     "OUTPUT_FILES", "OutputSpaceError", "check_output_space", "estimate_output_bytes", "human_bytes", "jsonable",
-    "planned_samples", "plot_response", "summary_json", "write_outputs",
+    "planned_samples", "plot_response", "summary_json", "write_files", "write_outputs",
 ]
 
 #: The files :func:`write_outputs` creates, in order.
@@ -376,9 +376,49 @@ def write_outputs(
     """
     if np.asarray(response.t).size == 0:
         raise ValueError("the response has no time series: simulate with save=True")
+    title = None
+    if config is not None and getattr(config, "source", None):
+        outcome = (f"overturned at t = {response.overturn_time:.3f} s" if response.overturned
+                   else f"peak θ/α = {response.peak_rotation / response.alpha:.3f}")
+        title = f"{Path(config.source).name}: {outcome}"
+    # looked up when called (tests replace the writers of this module)
+    return write_files(out_dir, {
+        "timeseries.csv": lambda path: _write_csv(response, path),
+        "timeseries.nc": lambda path: _write_netcdf(response, path, config),
+        "summary.json": lambda path: _write_summary(response, path),
+        "response.png": lambda path: plot_response(response, path, title=title),
+    })
+
+
+def write_files(out_dir: str | os.PathLike[str], writers: Mapping[str, Any]) -> dict[str, Path]:
+    """Write files into ``out_dir`` all at once, or not at all.
+
+    Parameters
+    ----------
+    out_dir : path-like
+        Target folder; created (with its parents) if missing. Files of the same names are
+        replaced, other files are left alone.
+    writers : mapping
+        ``{file name: function(path)}``, called in order, each writing its file at ``path``
+        (in a temporary folder).
+
+    Returns
+    -------
+    dict
+        ``{file name: path in out_dir}``.
+
+    Raises
+    ------
+    NotADirectoryError
+        If ``out_dir`` exists and is not a folder.
+    OSError, ValueError
+        What a writer raised; then no new file is left in ``out_dir``, and any folder this
+        call created is removed again (see :func:`write_outputs`).
+    """
     out = Path(out_dir)
     if out.exists() and not out.is_dir():
         raise NotADirectoryError(f"{out}: exists and is not a directory")
+    names = list(writers)
     created: list[Path] = []
     # the name before the folder, and the folder inside the try: an interrupt at any moment
     # (Ctrl-C, or SIGTERM through rocking.cli.interrupts) leaves no temporary folder behind
@@ -386,36 +426,28 @@ def write_outputs(
     try:
         created = _make_parents(out.parent)
         tmp.mkdir(mode=0o700)  # private while it fills, like mkdtemp's
-        title = None
-        if config is not None and getattr(config, "source", None):
-            title = Path(config.source).name
-            outcome = (f"overturned at t = {response.overturn_time:.3f} s" if response.overturned
-                       else f"peak θ/α = {response.peak_rotation / response.alpha:.3f}")
-            title = f"{title}: {outcome}"
-        _write_csv(response, tmp / "timeseries.csv")
-        _write_netcdf(response, tmp / "timeseries.nc", config)
-        _write_summary(response, tmp / "summary.json")
-        plot_response(response, tmp / "response.png", title=title)
+        for name, write in writers.items():
+            write(tmp / name)
         if not out.exists():
             out.mkdir()
             created.append(out)
-        _move_in(tmp, out)
+        _move_in(tmp, out, names)
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)  # first: it sits in a folder we may remove
         _remove_empty(created)
         raise
     shutil.rmtree(tmp, ignore_errors=True)
-    return {name: out / name for name in OUTPUT_FILES}
+    return {name: out / name for name in names}
 
 
-def _move_in(tmp: Path, out: Path) -> None:
+def _move_in(tmp: Path, out: Path, names: list[str]) -> None:
     """Move the finished files into ``out``; on failure put back what was there."""
     backup = tmp / ".previous"
     backup.mkdir()
     moved: list[str] = []
     saved: list[str] = []
     try:
-        for name in OUTPUT_FILES:
+        for name in names:
             target = out / name
             if target.exists():
                 os.replace(target, backup / name)

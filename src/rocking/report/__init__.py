@@ -30,10 +30,14 @@ def _resolve(source: Any) -> tuple[Any, Any]:
         return None, source
     if isinstance(source, tuple) and len(source) == 2 and isinstance(source[1], Response):
         return source
-    if isinstance(source, (str, os.PathLike, Mapping)) or type(source).__name__ == "Config":
+    if isinstance(source, (str, os.PathLike, Mapping)) or type(source).__name__ in ("Config", "StackConfig"):
+        from ..io.config import StackConfig, load_config
         from ..runner import run_response
 
-        return run_response(source)
+        config = load_config(source)
+        if isinstance(config, StackConfig):
+            raise ValueError("a stack of blocks ([[blocks]]) has no report yet; rocking.run_response simulates it")
+        return run_response(config)
     raise TypeError(
         "write_report needs a Response, a (Config, Response) pair, a config file path, a config "
         f"dict or a Config; got {type(source).__name__}"

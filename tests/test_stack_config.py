@@ -1,0 +1,272 @@
+"""Stack files (``[[blocks]]``, ``[[interfaces]]``): parsing, one clear error per bad input, and
+``rocking run`` of a stack (issue 11 §5).
+
+The commands run in-process through ``rocking.cli.main(argv)``, as in test_cli.py; the runs are
+short (half a second of a sine pulse), so once the stack engine is compiled each takes milliseconds.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import re
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+from rich.console import Console
+
+import rocking as rk
+from rocking import runner
+from rocking.cli import main
+from rocking.cli.render import outcome_markup
+from rocking.cli.stack_run import stack_tables
+from rocking.io.config import Config, ConfigError, StackConfig, load_config
+from rocking.io.stack_output import STACK_OUTPUT_FILES, csv_header
+from rocking.stack import Stack
+
+ROOT = Path(__file__).resolve().parents[1]
+PEDESTAL = ROOT / "examples" / "stack_statue_on_pedestal.toml"
+THREE = ROOT / "examples" / "stack_three_blocks.toml"
+
+TOML = """\
+[[blocks]]
+name = "pedestal"
+width = 0.8
+height = 0.5
+mass = 300.0
+
+[[blocks]]
+name = "statue"
+width = 0.3
+height = 1.2
+mass = 100.0
+
+[[interfaces]]
+friction = { static = 0.3, kinetic = 0.25 }
+
+[[interfaces]]
+friction = { static = 0.5, kinetic = 0.4 }
+restitution = 0.8
+
+[motion]
+kind = "pulse"
+shape = "sine"
+amplitude = 3.5
+frequency = 1.0
+
+[simulation]
+duration = 0.5
+"""
+
+BASE = tomllib.loads(TOML)
+
+
+def _mutated(change) -> dict:
+    d = copy.deepcopy(BASE)
+    change(d)
+    return d
+
+
+def _run_cli(capsys, *args) -> tuple[int, str, str]:
+    code = main([str(a) for a in args])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+@pytest.fixture
+def stack_toml(tmp_path) -> Path:
+    f = tmp_path / "stack.toml"
+    f.write_text(TOML, encoding="utf-8")
+    return f
+
+
+# ------------------------------------------------------------------------ examples
+def test_statue_on_pedestal_example_gives_the_stack():
+    cfg = load_config(PEDESTAL)
+    assert isinstance(cfg, StackConfig) and cfg.source == str(PEDESTAL)
+    stack, motion, options, duration = cfg.to_specs()
+    assert isinstance(stack, Stack) and stack.names == ("pedestal", "statue")
+    pedestal, statue = stack.blocks
+    assert (pedestal.width, pedestal.height, pedestal.mass, pedestal.inertia) == (0.8, 0.5, 300.0, None)
+    assert (statue.width, statue.height, statue.mass, statue.offset) == (0.3, 1.2, 100.0, 0.0)
+    floor, top = stack.interfaces
+    assert (floor.friction.static, floor.friction.kinetic) == (0.3, 0.25)
+    assert (top.friction.static, top.friction.kinetic) == (0.5, 0.4) and top.restitution is None
+    assert isinstance(motion, rk.SinePulse) and isinstance(options, rk.Options) and duration is None
+
+
+def test_three_blocks_example_gives_the_stack():
+    stack, motion, options, duration = load_config(THREE).to_specs()
+    assert stack.names == ("plinth", "statue", "vase")
+    assert stack.blocks[1].inertia == 45.0 and stack.blocks[2].offset == 0.05
+    assert stack.interfaces[1].friction.mu_k == stack.interfaces[1].friction.mu_s == 0.6  # kinetic = static
+    assert stack.interfaces[2].restitution == 0.7
+    assert options.free_time_limit == 10.0
+
+
+def test_dict_and_toml_give_the_same_stack(stack_toml):
+    assert load_config(stack_toml).to_specs() == load_config(BASE).to_specs()
+
+
+def test_defaults_an_interface_without_friction_never_slips_and_names_are_optional():
+    d = _mutated(lambda d: (d["interfaces"][1].pop("friction"), d["blocks"][0].pop("name")))
+    stack, *_ = load_config(d).to_specs()
+    assert stack.interfaces[1].friction is None
+    assert stack.names == ("block 1", "statue")
+    assert stack.blocks[0].centroidal_inertia == pytest.approx(300.0 * (0.8**2 + 0.5**2) / 12)
+
+
+def test_a_single_statue_file_still_gives_a_config():
+    single = {"statue": {"width": 0.3, "height": 1.2, "mass": 100.0},
+              "motion": {"kind": "pulse", "shape": "sine", "amplitude": 3.0, "frequency": 1.0}}
+    assert type(load_config(single)) is Config
+
+
+# ------------------------------------------------------------------------ bad input
+# (id, change to the dict, the field the message names, words it must contain)
+BAD = [
+    ("too-few-interfaces", lambda d: d["interfaces"].pop(), "interfaces",
+     ["2 blocks need 2 interfaces", "floor–pedestal, pedestal–statue", "got 1"]),
+    ("too-many-interfaces", lambda d: d["interfaces"].append({}), "interfaces", ["2 blocks need 2", "got 3"]),
+    ("no-overlap", lambda d: d["blocks"][1].update(offset=0.55), "blocks[1].offset",
+     ["no overlap", "pedestal", "< (width + width below)/2 = 0.55 m", "got 0.55"]),
+    ("no-overlap-left", lambda d: d["blocks"][1].update(offset=-0.7), "blocks[1].offset", ["got -0.7"]),
+    ("negative-inertia", lambda d: d["blocks"][1].update(inertia=-2.0), "blocks[1].inertia",
+     ["must be > 0", "got -2.0"]),
+    ("zero-width", lambda d: d["blocks"][0].update(width=0), "blocks[0].width", ["must be > 0", "got 0"]),
+    ("missing-mass", lambda d: d["blocks"][1].pop("mass"), "blocks[1].mass", ["missing"]),
+    ("string-offset", lambda d: d["blocks"][1].update(offset="left"), "blocks[1].offset", ["a number", "'left'"]),
+    ("unknown-block-key", lambda d: d["blocks"][1].update(widht=0.3), "blocks[1].widht",
+     ["unknown key", "did you mean 'width'"]),
+    ("unknown-interface-key", lambda d: d["interfaces"][0].update(frction=0.3), "interfaces[0].frction",
+     ["unknown key", "did you mean 'friction'"]),
+    ("unknown-top-level-key", lambda d: d.update(blokcs=[]), "blokcs", ["unknown key", "did you mean 'blocks'"]),
+    ("restitution-above-1", lambda d: d["interfaces"][1].update(restitution=1.5), "interfaces[1].restitution",
+     ["must be <= 1", "got 1.5"]),
+    ("kinetic-above-static", lambda d: d["interfaces"][0].update(friction={"static": 0.3, "kinetic": 0.4}),
+     "interfaces[0].friction.kinetic", ["must be <= static (0.3)", "got 0.4"]),
+    ("repeated-name", lambda d: d["blocks"][1].update(name="pedestal"), "blocks[1].name",
+     ["'pedestal'", "already the name of blocks[0]"]),
+    ("empty-name", lambda d: d["blocks"][1].update(name=""), "blocks[1].name", ["must not be empty"]),
+    ("no-blocks", lambda d: d.update(blocks=[]), "blocks", ["must not be empty"]),
+    ("blocks-as-a-table", lambda d: d.update(blocks={"width": 1.0}), "blocks", ["array of tables", "[[blocks]]"]),
+    ("interfaces-without-blocks", lambda d: d.pop("blocks"), "blocks", ["missing"]),
+    ("statue-and-blocks", lambda d: d.update(statue={"width": 0.3, "height": 1.2, "mass": 100.0}), "blocks",
+     ["[statue]", "[[blocks]]", "either"]),
+    ("pedestal-and-blocks", lambda d: d.update(pedestal={"mass": 50.0}), "blocks", ["[pedestal]"]),
+    ("paper-normal-force", lambda d: d["simulation"].update(normal_force="paper"), "simulation.normal_force",
+     ["'paper'", "single-statue solver"]),
+]
+
+
+@pytest.mark.parametrize(("change", "field", "words"), [c[1:] for c in BAD], ids=[c[0] for c in BAD])
+def test_bad_stack_input_is_one_error_naming_the_field(change, field, words):
+    with pytest.raises(ConfigError) as info:
+        load_config(_mutated(change))
+    message = str(info.value)
+    assert info.value.field == field, message
+    assert message.startswith(f"{field}: ") and "\n" not in message, message
+    for w in words:
+        assert w in message, (w, message)
+
+
+def test_a_file_without_statue_nor_blocks_says_both():
+    with pytest.raises(ConfigError, match=r"^statue: missing \(required\); or describe a stack .*\[\[blocks\]\]"):
+        load_config({"motion": BASE["motion"]})
+
+
+def test_cli_bad_stack_file_exits_2_with_one_line_and_no_output(capsys, tmp_path):
+    f = tmp_path / "bad.toml"
+    f.write_text(TOML.replace("[[interfaces]]\nfriction = { static = 0.5, kinetic = 0.4 }\nrestitution = 0.8\n", ""),
+                 encoding="utf-8")
+    code, out, err = _run_cli(capsys, "run", f, "--out", tmp_path / "out")
+    assert code == 2 and out == ""
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith(f"error: {f}: interfaces: 2 blocks need 2 interfaces"), err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.toml"]
+
+
+# ------------------------------------------------------------------------ rocking run
+def test_rocking_run_prints_the_verdict_and_tables_and_writes_the_files(capsys, stack_toml, tmp_path):
+    out_dir = tmp_path / "results" / "stack"
+    code, out, err = _run_cli(capsys, "run", stack_toml, "--out", out_dir)
+    assert code == 0, err
+    expected = runner.run(stack_toml)
+    verdict = next(line for line in out.splitlines() if "outcome" in line)
+    assert expected["verdict"] in verdict
+    for words in ("peak rotation (°)", "peak sliding (mm)", "residual sliding (mm)", "friction needed",
+                  "slip path (mm)", "floor–pedestal", "pedestal–statue"):
+        assert words in out, words
+    assert len([line for line in out.splitlines() if re.match(r"^\s+(pedestal|statue)\s", line)]) == 2
+
+    wrote = re.search(r"^wrote (.+) to (.+)$", out, re.M)
+    assert wrote is not None, out
+    names = wrote.group(1).split(", ")
+    assert names == list(STACK_OUTPUT_FILES) and Path(wrote.group(2)) == out_dir
+    assert sorted(p.name for p in out_dir.iterdir()) == sorted(names)  # every file named, and only those
+    assert not [p for p in out_dir.parent.iterdir() if p.name.startswith(".")]  # no temporary folder left
+
+    summary = json.loads((out_dir / "summary.json").read_text(encoding="utf-8"))
+    assert [b["name"] for b in summary["blocks"]] == ["pedestal", "statue"]
+    assert [f["name"] for f in summary["interfaces"]] == ["floor–pedestal", "pedestal–statue"]
+    assert summary["verdict"] == expected["verdict"]
+    assert (out_dir / "response.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+    _, response = runner.run_response(stack_toml)
+    csv = np.genfromtxt(out_dir / "timeseries.csv", delimiter=",", names=True)
+    assert list(csv.dtype.names) == csv_header(("pedestal", "statue"))
+    assert csv.dtype.names[:6] == ("time_s", "pedestal_x_m", "pedestal_y_m", "pedestal_theta_rad",
+                                   "pedestal_phi_rad", "pedestal_sliding_m")
+    np.testing.assert_allclose(csv["time_s"], response.t, rtol=1e-9)
+    np.testing.assert_allclose(csv["statue_theta_rad"], response.pose[:, 1, 2], rtol=1e-9, atol=1e-15)
+    np.testing.assert_allclose(csv["statue_sliding_m"], response.sliding[:, 1], rtol=1e-9, atol=1e-15)
+
+
+def test_rocking_run_json_prints_only_the_summary(capsys, stack_toml, tmp_path):
+    code, out, err = _run_cli(capsys, "run", stack_toml, "--json", "--out", tmp_path / "o")
+    assert code == 0, err
+    summary = json.loads(out)  # nothing but JSON on stdout
+    assert {"blocks", "interfaces", "verdict", "overturned"} <= summary.keys()
+    assert len(summary["blocks"]) == len(summary["interfaces"]) == 2
+    assert err.strip() == f"wrote {', '.join(STACK_OUTPUT_FILES)} to {tmp_path / 'o'}"
+
+
+def test_rocking_run_of_a_stack_keeps_the_sample_limit(capsys, stack_toml, tmp_path):
+    code, out, err = _run_cli(capsys, "run", stack_toml, "--max-samples", "10", "--out", tmp_path / "o")
+    assert code == 2 and out == ""
+    assert err.startswith("error: simulation.save_dt:") and "simulation.max_samples = 10" in err
+    assert len(err.strip().splitlines()) == 1 and not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("command", [["report"], ["animate"], ["run", "--animate", "--out", "o"]])
+def test_views_of_a_stack_are_refused_before_simulating(capsys, stack_toml, command, monkeypatch):
+    monkeypatch.chdir(stack_toml.parent)
+    args = [command[0], stack_toml, *command[1:]]
+    code, out, err = _run_cli(capsys, *args)
+    assert code == 2 and out == ""
+    assert err.startswith("error: ") and "stack of blocks" in err and len(err.strip().splitlines()) == 1, err
+    assert sorted(p.name for p in stack_toml.parent.iterdir()) == ["stack.toml"]  # nothing written
+
+
+def test_the_verdict_is_coloured_as_for_one_statue():
+    summary = {"overturned": True, "verdict": "statue overturned at t = 2.000 s", "impacts": 1, "end_time": 2.0,
+               "energy_balance_error": 1e-10,
+               "blocks": [{"name": "statue", "overturned": True, "overturn_time": 2.0, "peak_rotation": 1.5708,
+                           "peak_sliding": 0.01, "residual_sliding": 0.01}],
+               "interfaces": [{"name": "floor–statue", "required_friction": 0.3, "slip_path": 0.02, "impacts": 1}]}
+    assert outcome_markup(summary).startswith("[bold red]")
+    assert outcome_markup({**summary, "overturned": False, "verdict": "undetermined: x"}).startswith("[bold yellow]")
+    assert outcome_markup({**summary, "overturned": False, "verdict": "did not overturn"}).startswith("[bold green]")
+    console = Console(record=True, width=120)
+    console.print(stack_tables(summary, frictions=[None]))
+    text = console.export_text()
+    assert "statue overturned at t = 2.000 s" in text and "90.00" in text and "10.00" in text
+    assert "never slips" in text and "20.00" in text
+
+
+def test_the_paper_impact_law_is_accepted_for_stacks():
+    """impact = "paper" runs on the stack engine (docs/theory/stack.md §6)."""
+    stack, _, options, _ = load_config(_mutated(lambda d: d["simulation"].update(impact="paper"))).to_specs()
+    assert options.impact == "paper"
