@@ -328,3 +328,21 @@ def test_paper_normal_force_is_refused_for_stacks():
     stack = Stack(blocks=(Block(width=0.3, height=1.2, mass=100.0),), interfaces=(Interface(),))
     with pytest.raises(ValueError, match="normal_force"):
         simulate_stack(stack, rocking.SinePulse(amplitude=3.0, frequency=1.0), options={"normal_force": "paper"})
+
+
+@pytest.mark.parametrize("mu", [0.5, 1.0])
+def test_enough_top_friction_changes_nothing(mu):
+    """A top face whose friction exceeds what the statue needs (0.26 here) gives the response of a
+    top face that never slips: the same rocking, the same sequence of impacts to rest, no slip.
+    (A rest rule that let the landing statue slip made it chatter for 60 s and gain energy.)"""
+    def run(top):
+        stack = Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(width=0.3, height=1.2, mass=100.0)),
+                      interfaces=(Interface(friction=Friction(static=0.3, kinetic=0.25)), Interface(friction=top)))
+        return simulate_stack(stack, rocking.SinePulse(amplitude=2.8, frequency=1.0))
+
+    never, frictional = run(None), run(Friction(static=mu, kinetic=0.8 * mu))
+    assert never.status == frictional.status == "completed"
+    assert frictional.summary()["impacts"] == never.summary()["impacts"] > 100
+    assert np.max(np.abs(frictional.rotation - never.rotation)) < 1e-12
+    assert frictional.blocks[1]["peak_sliding"] < 1e-12
+    assert frictional.summary()["energy_balance_error"] < 1e-8

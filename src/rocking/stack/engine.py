@@ -337,7 +337,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0, held)
             bad = False
             for j in range(ng):
-                if g0[j] <= 0.0 and j % N_GUARD_SLOTS <= G_STICK_NEG:
+                if g0[j] <= 0.0 and _is_force(j, nstate, tstate):
                     bad = True
             if bad:
                 ah, av = _ground(loc, t)
@@ -417,8 +417,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 dop853.dense(y, F, x_hi, ym)
                 guards(P, ends, anchor, nstate, tstate, t + x_hi * hs, ym, loc, gravity, g1, held)
             for j in range(ng):
-                if sub == 1 and g0[j] < -1e3 * tol_force and g1[j] < g0[j] and j % N_GUARD_SLOTS <= G_STICK_NEG \
-                        and nstate[j // N_GUARD_SLOTS] >= ROCK:
+                if sub == 1 and g0[j] < -1e3 * tol_force and g1[j] < g0[j] and _is_force(j, nstate, tstate):
                     # the mode breaks its own condition from the start (a force born negative):
                     # an event now, decided again
                     x_first = 0.0
@@ -719,6 +718,18 @@ def _save_grid(P, ends, anchor, nstate, tstate, t, y, h, F, dense_ok, K, loc, gr
         n_out += 1
         next_grid += 1
     return n_out, next_grid
+
+
+@njit(cache=True)
+def _is_force(j, nstate, tstate):
+    """Whether guard j is a contact force (N), not a gap or a slip velocity."""
+    k = j // N_GUARD_SLOTS
+    slot = j - k * N_GUARD_SLOTS
+    if nstate[k] == FLAT:
+        return slot == G_ANCHOR or slot == G_OTHER or (tstate[k] == 0 and (slot == G_STICK_POS or slot == G_STICK_NEG))
+    if nstate[k] == ROCK:
+        return slot == G_ANCHOR or (tstate[k] == 0 and (slot == G_STICK_POS or slot == G_STICK_NEG))
+    return False
 
 
 @njit(cache=True)

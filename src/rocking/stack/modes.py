@@ -268,8 +268,13 @@ def select_mode(level, P, ends, anchor, geo, z, zd, ah, av, gravity, rhs_extra,
                     ok = False
             if nst == OPEN and tst != 0:
                 ok = False
-            if k == force_flat and nst != FLAT:
-                ok = False
+            if k == force_flat:
+                # the rest rule lands the interface flat and keeps its tangential state: sliding on
+                # in its direction, or stuck (its tiny landing impulse decides nothing)
+                a_dot = zd[3 * k]
+                keep = 0 if a_dot == 0.0 or P[k, P_CAN_SLIP] < 0.5 else (1 if a_dot > 0.0 else -1)
+                if nst != FLAT or tst != keep:
+                    ok = False
             if (hold or (force_flat >= 0 and k != force_flat)) and (nst != geo[k] or other == 1):
                 ok = False  # the rest rule lands one interface and lifts nothing else
             allowed[k, c] = ok
@@ -322,6 +327,8 @@ def select_mode(level, P, ends, anchor, geo, z, zd, ah, av, gravity, rhs_extra,
                     good = True
                     for k in range(n):
                         c = counter[k]
+                        if k == force_flat:
+                            continue
                         if not _candidate_ok(level, P, ends, anchor, geo, k, nstate[k], tstate[k], z, zd,
                                              x_out, lam_out, tol_force, tol_rate, force_flat < 0 and not hold):
                             good = False
