@@ -261,3 +261,26 @@ def test_ordinary_events_are_consistent():
         r = rk.simulate(system, rk.SinePulse(amplitude=3.5, frequency=1.5))
         assert r.overturned
         assert not [w for w in r.warnings if "strictly consistent" in w]
+
+
+def test_friction_ratio_of_a_zero_normal_impulse_is_infinite():
+    """|Fx|/Fy with Fy = 0 needs infinite friction (no division). Kills impact.py:81
+    (``fy <= 0.0`` → ``fy < 0.0``, which divides by zero)."""
+    from rocking.contact.impact import friction_ratio
+
+    assert friction_ratio(1.0, 0.0) == math.inf
+    assert friction_ratio(0.0, 0.0) == math.inf
+    assert friction_ratio(-0.3, 1.0) == pytest.approx(0.3, rel=1e-15)
+
+
+def test_a_plastic_impact_on_a_held_pedestal_is_consistent():
+    """r = 0 on a pedestal the floor holds: the Coulomb law stops the statue dead (θ̇⁺ = 0
+    exactly), which is consistent, not a reversal. Kills impact.py:58 (``w_stick * θ̇⁻ >= 0`` →
+    ``> 0``, which flags the stop as inconsistent)."""
+    from rocking.contact.impact import impact_coulomb
+
+    statue = rk.Statue(width=0.2, height=1.2, mass=50.0, restitution=0.0)
+    m2, m_tot, b, h = 50.0, 250.0, 0.1, 0.6
+    u1, w1, fx, fy, ok = impact_coulomb(statue.inertia_about_corner, m_tot, m2, b, h, 0.0, 10.0, 10.0, 1.0, 0.0, 0.44)
+    assert (u1, w1, ok) == (0.0, 0.0, True)
+    assert fx == pytest.approx(-m2 * h * 0.44, rel=1e-14) and fy == pytest.approx(m2 * b * 0.44, rel=1e-14)
