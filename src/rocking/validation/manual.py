@@ -133,8 +133,8 @@ def _findings(rows: list[Row]) -> list[str]:
             if r.status == "differs (explained)"]
     pending = [r.id for r in rows if r.status == "pending"]
     if pending:
-        out.append(f"* Pending ({', '.join(pending)}): the two-block stack checks wait for the general stack engine "
-                   "(issue 11).")
+        out.append(f"* Pending ({', '.join(pending)}): the rocking frame waits for a model of blocks on several "
+                   "supports.")
     return out
 
 

@@ -1,5 +1,5 @@
-"""The statue-on-pedestal model reduced to the validated single-block cases, and the stacks that
-cannot be checked yet."""
+"""The statue-on-pedestal model reduced to the validated single-block cases, and two-block stacks
+on the general stack engine."""
 
 from __future__ import annotations
 
@@ -47,18 +47,41 @@ def reduction_rows(quick: bool) -> list[Row]:
     return rows
 
 
-def pending_rows() -> list[Row]:
-    note = "needs the general stack engine (issue 11)"
-    return [
-        Row("ST1.1", "Psycharis 1990", "two-block stack, both blocks centred: uplift of the whole stack at "
-                                       "a_g = g·b1/h_c (h_c: height of the combined centre of mass)",
-            "pending", note=note),
-        Row("ST1.2", "Psycharis 1990", "two-block stack: uplift of the top block alone at a_g = g·b2/h2; the "
-                                       "smaller threshold starts the motion", "pending", note=note),
-        Row("ST1.3", "Makris & Vassiliou 2013",
-            "rocking frame (columns and a free cap beam): p̂ = p·√((1+2γ)/(1+3γ)), "
-            "η̂ = (1 − 1.5 sin²α + 3γ cos 2α)/(1 + 3γ)", "pending", note=note),
-    ]
+def _ramp_onset(stack, block: int, rate: float = 0.05) -> float:
+    """Floor acceleration (m/s²) at which ``block`` (0 = the lowest) first rocks under a slow ramp
+    a = rate·t from rest, through the general stack engine."""
+    from rocking.stack import simulate_stack
+
+    r = simulate_stack(stack, rk.Ramp(rate=rate, end=60.0), duration=60.0, options={"gravity": ex.G})
+    return rate * r.blocks[block]["first_rocking_time"]
+
+
+def stack_rows() -> list[Row]:
+    from rocking.stack import Block, Interface, Stack
+
+    rows = []
+    # the whole stack rocks first: two centred blocks of one width, the top one squat
+    m1, m2, b1, h1, h2 = 40.0, 60.0, 0.15, 1.0, 0.5
+    whole = Stack(blocks=(Block(width=2 * b1, height=h1, mass=m1), Block(width=2 * b1, height=h2, mass=m2)),
+                  interfaces=(Interface(), Interface()))
+    h_c = (m1 * h1 / 2 + m2 * (h1 + h2 / 2)) / (m1 + m2)
+    rows.append(Row("ST1.1", "Psycharis 1990", "two-block stack, both blocks centred (B = 0.3 m; H1 = 1 m, 40 kg; "
+                                               "H2 = 0.5 m, 60 kg): uplift of the whole stack at a_g = g·b1/h_c "
+                                               "(h_c: height of the combined centre of mass), slow ramp from rest",
+                    "exact", published=ex.G * b1 / h_c, ours=_ramp_onset(whole, 0), unit="m/s²", tol=1e-6,
+                    note="the top block's own threshold, g·b2/h2 = 0.6 g, is higher: the stack rocks as one"))
+    # the top block rocks first: a slender statue on a wide heavy plinth
+    top = Stack(blocks=(Block(width=2.0, height=0.3, mass=500.0), Block(width=0.3, height=1.2, mass=50.0)),
+                interfaces=(Interface(), Interface()))
+    rows.append(Row("ST1.2", "Psycharis 1990", "two-block stack: uplift of the top block alone (0.3 × 1.2 m on a "
+                                               "2 × 0.3 m plinth) at a_g = g·b2/h2; the smaller threshold starts the "
+                                               "motion", "exact", published=ex.G * 0.15 / 0.6, ours=_ramp_onset(top, 1),
+                    unit="m/s²", tol=1e-6))
+    rows.append(Row("ST1.3", "Makris & Vassiliou 2013",
+                    "rocking frame (columns and a free cap beam): p̂ = p·√((1+2γ)/(1+3γ)), "
+                    "η̂ = (1 − 1.5 sin²α + 3γ cos 2α)/(1 + 3γ)", "pending",
+                    note="a frame stands on several columns side by side; the stack engine takes one block on another"))
+    return rows
 
 
 INTRO_REDUCTION = """\
@@ -69,12 +92,14 @@ Housner's block (§1–2), with a statue that cannot rock it is Newmark's slidin
 paper's own case studies are compared in `docs/paper-case-studies.md`."""
 
 INTRO_STACKS = """\
-Stacks of blocks (a statue on a plinth that can itself rock, columns with a cap) need the general
-stack engine of issue 11. Their checks are listed here so that they are not forgotten."""
+Stacks of blocks (a statue on a plinth that can itself rock) run on the general stack engine
+(`rocking.stack`, `docs/theory/stack.md`): which block starts to rock first, and at what floor
+acceleration, under a slow ramp. A rocking frame (columns with a free cap beam) is not a stack of
+one block on another and waits for a multi-contact model."""
 
 
 def sections(quick: bool, progress) -> list[Section]:
     progress("pedestal model: reductions")
     return [Section("pedestal", "7. The statue-on-pedestal model: reduction to the validated cases", INTRO_REDUCTION,
                     reduction_rows(quick)),
-            Section("stacks", "8. Two-block stacks", INTRO_STACKS, pending_rows())]
+            Section("stacks", "8. Two-block stacks", INTRO_STACKS, stack_rows())]
