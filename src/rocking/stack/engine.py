@@ -417,6 +417,11 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 dop853.dense(y, F, x_hi, ym)
                 guards(P, ends, anchor, nstate, tstate, t + x_hi * hs, ym, loc, gravity, g1, held)
             for j in range(ng):
+                if sub == 1 and g0[j] <= 0.0 and g1[j] < 0.0 and _is_slip(j, nstate, tstate):
+                    # a slip that runs against its own direction from the start: it stops now
+                    x_first = 0.0
+                    first = j
+                    break
                 if sub == 1 and g0[j] < -1e3 * tol_force and g1[j] < g0[j] and _is_force(j, nstate, tstate):
                     # the mode breaks its own condition from the start (a force born negative):
                     # an event now, decided again
@@ -730,6 +735,13 @@ def _is_force(j, nstate, tstate):
     if nstate[k] == ROCK:
         return slot == G_ANCHOR or (tstate[k] == 0 and (slot == G_STICK_POS or slot == G_STICK_NEG))
     return False
+
+
+@njit(cache=True)
+def _is_slip(j, nstate, tstate):
+    """Whether guard j is the slip velocity σ·ȧ of a slipping interface."""
+    k = j // N_GUARD_SLOTS
+    return j - k * N_GUARD_SLOTS == G_STICK_POS and nstate[k] >= ROCK and tstate[k] != 0
 
 
 @njit(cache=True)

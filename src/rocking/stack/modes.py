@@ -220,9 +220,14 @@ def _candidate_ok(level, P, ends, anchor, geo, k, nst, tst, z, zd, x, lam, tol_f
             if abs(lam[i]) > P[k, P_MU_S] * lam[i + 2] + tol_force:
                 return False
         else:
-            # already slipping (ȧ ≠ 0): the direction is ȧ's (filtered by select_mode); from
-            # rest, or after an impulse, the motion must go the way friction assumes
-            if not (level == ACCELERATION and zd[i] != 0.0) and tst * x[i] < -tol_rate:
+            # already slipping (ȧ ≠ 0): the direction is ȧ's (filtered by select_mode). From rest
+            # the slip must start the way friction assumes, strictly (ä·σ > 0): a slip that goes
+            # the other way at a rounding-error rate would be pushed along by its own friction
+            # and create energy. After an impulse, σ·ȧ⁺ ≥ 0 (ȧ⁺ = 0 is a stick, tried first).
+            if level == ACCELERATION:
+                if zd[i] == 0.0 and not tst * x[i] > 0.0:
+                    return False
+            elif tst * x[i] < 0.0:
                 return False
     return True
 
