@@ -910,11 +910,17 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
                     return STATUS_INCONSISTENT, d_impact, n_ev
             for j in range(nz):
                 zd[j] = x_sel[j]
-            t_after = _kinetic_of(P, ends, anchor, z, zd)
-            d_impact += t_before - t_after
             for j in range(n):
                 geo[j] = nstate[j]
             for j in range(n):
+                # The rest rule for slips: an impact that leaves an interface slipping slower
+                # than rest_velocity × its block's size ends that slip (the acceleration-level
+                # choice below then decides stick or slip afresh). Without it, a statue at its
+                # rocking threshold went on switching rock, landing and a 1e-10 m/s slip every
+                # 1e-8 s.
+                if nstate[j] >= ROCK and tstate[j] != 0 and abs(zd[3 * j]) < rest_velocity * (P[j, P_HU] + P[j, P_BU]):
+                    zd[3 * j] = 0.0
+                    tstate[j] = 0
                 # exact zeros for what the impact froze
                 if nstate[j] >= ROCK:
                     zd[3 * j + 2] = 0.0
@@ -922,6 +928,9 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
                         zd[3 * j] = 0.0
                 if nstate[j] == FLAT:
                     zd[3 * j + 1] = 0.0
+            # the energy the impact took, rest rules included (everything the ledger must see)
+            t_after = _kinetic_of(P, ends, anchor, z, zd)
+            d_impact += t_before - t_after
             n_ev = _record(events, n_ev, t, k, EVENT_IMPACT, nstate[k], tstate[k], t_before - t_after)
         veto_k, veto_kind = -1, 0
     else:

@@ -211,9 +211,16 @@ def _candidate_ok(level, P, ends, anchor, geo, k, nst, tst, z, zd, x, lam, tol_f
         if geo[k] >= ROCK and x[i + 2] < -tol_rate:
             return False
     if check_normal and nst <= ROCK and geo[k] == FLAT:
-        # the other end must open: its gap rate (velocity level) or gap acceleration ≥ 0
+        # The other end must open: its gap rate ≥ 0 after an impulse; its gap acceleration > 0,
+        # strictly, from rest (flat, tried first, holds where it is zero; a rounding-error
+        # tolerance here let a block rock the wrong way round and land again 1e-8 s later, for
+        # ever).
         grad = end_gap_gradient(P, ends, anchor, k, z, 1 - anchor[k])
-        if grad[0] * x[i] + grad[1] * x[i + 1] + grad[2] * x[i + 2] < -tol_rate:
+        opening = grad[0] * x[i] + grad[1] * x[i + 1] + grad[2] * x[i + 2]
+        if level == ACCELERATION:
+            if not opening > 0.0:
+                return False
+        elif opening < -tol_rate:
             return False
     if nst >= ROCK and P[k, P_CAN_SLIP] > 0.5:
         if tst == 0:
