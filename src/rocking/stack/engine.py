@@ -32,6 +32,7 @@ from .kinematics import (
     end_gap,
     energy,
     forward,
+    new_frame,
     kinetic_energy,
     mass_and_forces,
     relative_pose,
@@ -108,13 +109,7 @@ def evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, dy, lam):
     nz = 3 * n
     z = y[:nz]
     zd = y[nz:2 * nz]
-    A = np.zeros((n, 2, nz))
-    beta = np.zeros((n, 2))
-    C = np.zeros((n, nz))
-    X = np.zeros((n, 2))
-    Xd = np.zeros((n, 2))
-    th = np.zeros(n)
-    thd = np.zeros(n)
+    A, beta, C, X, Xd, th, thd = new_frame(n)
     M = np.zeros((nz, nz))
     f = np.zeros(nz)
     ah, av = _ground(loc, t)
@@ -606,13 +601,7 @@ def _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, 
 def _energy_of(P, ends, anchor, y, gravity):
     n = P.shape[0]
     nz = 3 * n
-    A = np.zeros((n, 2, nz))
-    beta = np.zeros((n, 2))
-    C = np.zeros((n, nz))
-    X = np.zeros((n, 2))
-    Xd = np.zeros((n, 2))
-    th = np.zeros(n)
-    thd = np.zeros(n)
+    A, beta, C, X, Xd, th, thd = new_frame(n)
     forward(P, ends, anchor, y[:nz], y[nz:2 * nz], A, beta, C, X, Xd, th, thd)
     return energy(P, X, Xd, thd, gravity)
 
@@ -621,13 +610,7 @@ def _energy_of(P, ends, anchor, y, gravity):
 def _kinetic_of(P, ends, anchor, z, zd):
     n = P.shape[0]
     nz = 3 * n
-    A = np.zeros((n, 2, nz))
-    beta = np.zeros((n, 2))
-    C = np.zeros((n, nz))
-    X = np.zeros((n, 2))
-    Xd = np.zeros((n, 2))
-    th = np.zeros(n)
-    thd = np.zeros(n)
+    A, beta, C, X, Xd, th, thd = new_frame(n)
     forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, th, thd)
     return kinetic_energy(P, Xd, thd)
 
@@ -673,13 +656,7 @@ def _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity
 def _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, row):
     n = P.shape[0]
     nz = 3 * n
-    A = np.zeros((n, 2, nz))
-    beta = np.zeros((n, 2))
-    C = np.zeros((n, nz))
-    X = np.zeros((n, 2))
-    Xd = np.zeros((n, 2))
-    th = np.zeros(n)
-    thd = np.zeros(n)
+    A, beta, C, X, Xd, th, thd = new_frame(n)
     forward(P, ends, anchor, y[:nz], y[nz:2 * nz], A, beta, C, X, Xd, th, thd)
     samples[row, 0] = t
     c = 1

@@ -213,6 +213,14 @@ def forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, theta, theta_d):
 
 
 @njit(cache=True)
+def new_frame(n):
+    """Arrays for :func:`forward` of n blocks: (A, β, C, X, Ẋ, Θ, Θ̇)."""
+    nz = 3 * n
+    return (np.zeros((n, 2, nz)), np.zeros((n, 2)), np.zeros((n, nz)), np.zeros((n, 2)), np.zeros((n, 2)),
+            np.zeros(n), np.zeros(n))
+
+
+@njit(cache=True)
 def mass_and_forces(P, A, beta, C, ah, av, gravity, M, f):
     """M = Σ m AᵀA + J CᵀC and f = Σ Aᵀ(F − m β), F = (−m a_h, −m (g + a_v)) (fills M, f)."""
     n = P.shape[0]
@@ -257,13 +265,7 @@ def corner_positions(P, ends, anchor, z, zd=None):
     """Python helper for plots and tests: absolute centre poses (N, 3) = (X, Y, Θ)."""
     n = P.shape[0]
     nz = 3 * n
-    A = np.zeros((n, 2, nz))
-    beta = np.zeros((n, 2))
-    C = np.zeros((n, nz))
-    X = np.zeros((n, 2))
-    Xd = np.zeros((n, 2))
-    th = np.zeros(n)
-    thd = np.zeros(n)
+    A, beta, C, X, Xd, th, thd = new_frame(n)
     forward(P, ends, anchor, np.asarray(z, float), np.zeros(nz) if zd is None else np.asarray(zd, float),
             A, beta, C, X, Xd, th, thd)
     return np.column_stack([X, th])

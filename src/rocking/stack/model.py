@@ -23,12 +23,7 @@ import math
 from dataclasses import dataclass
 
 from ..contact.friction import Friction
-
-
-def _positive(field: str, value) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
-        raise ValueError(f"{field} must be a positive finite number, got {value!r}")
-    return float(value)
+from ..models.bodies import _positive
 
 
 @dataclass(frozen=True, kw_only=True, slots=True)

@@ -40,6 +40,7 @@ from .kinematics import (
     anchor_at,
     end_gap_gradient,
     forward,
+    new_frame,
     mass_and_forces,
     relative_pose,
 )
@@ -254,13 +255,7 @@ def select_mode(level, P, ends, anchor, geo, z, zd, ah, av, gravity, rhs_extra,
     Returns SELECT_OK or SELECT_NONE."""
     n = P.shape[0]
     nz = 3 * n
-    A = np.zeros((n, 2, nz))
-    beta = np.zeros((n, 2))
-    C = np.zeros((n, nz))
-    X = np.zeros((n, 2))
-    Xd = np.zeros((n, 2))
-    th = np.zeros(n)
-    thd = np.zeros(n)
+    A, beta, C, X, Xd, th, thd = new_frame(n)
     M = np.zeros((nz, nz))
     f = np.zeros(nz)
     # the branches each interface may take
