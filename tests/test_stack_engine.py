@@ -365,11 +365,14 @@ def test_friction_never_creates_energy_in_a_three_block_stack():
     assert np.max(np.abs(r.balance_error())) < 1e-8 * scale
 
 
-@pytest.mark.parametrize("record", ["Friuli1976_Tolmezzo_000", "ImperialValley1940_ElCentroArray9_180",
-                                    "LomaPrieta1989_Corralitos_000"])
-def test_three_block_stack_under_a_full_scale_record_runs_to_rest(record):
+@pytest.mark.parametrize("record, status", [
+    ("Friuli1976_Tolmezzo_000", "completed"), ("ImperialValley1940_ElCentroArray9_180", "completed"),
+    ("LomaPrieta1989_Corralitos_000", "completed"), ("Kobe1995_Takatori_000", "overturned"),
+    ("Northridge1994_RinaldiReceivingSta_228", "overturned")])
+def test_three_block_stack_under_a_full_scale_record_reaches_a_verdict(record, status):
     """Plinth, statue and off-centre vase under a whole record at full scale: the run reaches rest
-    (no endless switching at the statue's rocking threshold: the rest rule for slips), the ledger
+    or a fall (no endless switching at the statue's rocking threshold: the rest rule for slips; no
+    dead end at a record sample: the mode there is chosen as after an event), the ledger
     balances, friction and impacts only take energy."""
     from rocking.io.records import read_record
 
@@ -378,7 +381,7 @@ def test_three_block_stack_under_a_full_scale_record_runs_to_rest(record):
                   interfaces=(Interface(friction=Friction(static=0.6, kinetic=0.5)), Interface(friction=Friction(static=0.6)),
                               Interface(friction=Friction(static=0.4, kinetic=0.32), restitution=0.7)))
     r = simulate_stack(stack, read_record(record))
-    assert r.status == "completed", r.verdict
+    assert r.status == status, r.verdict
     scale = np.max(np.abs(r.input_work)) + np.max(np.abs(r.energy - r.initial_energy))
     assert np.max(np.abs(r.balance_error())) < 1e-8 * scale
     assert np.all(np.diff(r.friction_loss) >= -1e-9 * scale) and np.all(np.diff(r.impact_loss) >= -1e-9 * scale)

@@ -335,13 +335,15 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 if g0[j] <= 0.0 and _is_force(j, nstate, tstate):
                     bad = True
             if bad:
-                ah, av = _ground(loc, t)
                 for j in range(n):
                     geo[j] = nstate[j]
                 zv = y[:nz].copy()
                 zdv = y[nz:2 * nz].copy()
-                if select_mode(ACCELERATION, P, ends, anchor, geo, zv, zdv, ah, av, gravity, extra, nstate, tstate,
-                               -1, 0, tol_force, tol_rate, x_sel, lam_sel) != SELECT_OK:
+                code = _select_ahead(P, ends, anchor, geo, t, zv, zdv, loc, gravity, extra, nstate, tstate, -1, 0,
+                                     tol_force, tol_rate, x_sel, lam_sel)
+                if code == SELECT_HELD:
+                    code = SELECT_OK
+                if code != SELECT_OK:
                     status = STATUS_INCONSISTENT
                     break
                 y[:nz] = zv
