@@ -371,3 +371,22 @@ def test_console_script(tmp_path, short_toml):
     assert ko.returncode == 2 and ko.stdout == ""
     assert ko.stderr == f"error: {bad}: statue.width: must be > 0, got -1\n"
     assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("command", ["run", "records", "info", "paper", "report", "animate", "design", "fragility",
+                                     "spectrum"])
+def test_help_shows_flags_as_flags(command):
+    """A flag (--json, --animate, --help) takes no value, so --help shows no value type for it."""
+    env = dict(os.environ, COLUMNS="120", TERM="dumb")
+    done = subprocess.run([sys.executable, "-m", "rocking.cli", command, "--help"], capture_output=True, text=True,
+                          env=env, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert "<bool>" not in done.stdout and "--help" in done.stdout
+
+
+def test_paper_takes_o_for_out():
+    env = dict(os.environ, COLUMNS="120", TERM="dumb")
+    done = subprocess.run([sys.executable, "-m", "rocking.cli", "paper", "--help"], capture_output=True, text=True,
+                          env=env, timeout=120)
+    option_row = next(line for line in done.stdout.splitlines() if line.lstrip("│ ").startswith("--out"))
+    assert option_row.split()[2] == "-o"

@@ -54,6 +54,17 @@ class OutputError(OSError):
     """The outputs could not be written (exit code 1)."""
 
 
+# typer 0.29 prints a flag's value type ("<bool>") in --help as if the flag took a value; a flag
+# takes none, so it shows none.
+_display_type_rich = typer.core.TyperOption.display_type_rich
+
+
+def _flag_without_type(self, ctx):
+    return None if self.is_flag and not self.count else _display_type_rich(self, ctx)
+
+
+typer.core.TyperOption.display_type_rich = _flag_without_type
+
 app = typer.Typer(
     name="rocking",
     help="Rocking, sliding and overturning of statues on pedestals under floor shaking.",

@@ -27,7 +27,7 @@ def _publish(tmp: Path, out: Path) -> None:
 
 
 def paper(
-    out: Annotated[Path, typer.Option("--out", help="Directory for the figures and tables.")] = Path("paper-out"),
+    out: Annotated[Path, typer.Option("--out", "-o", help="Directory for the figures and tables.")] = Path("paper-out"),
     omega: Annotated[
         float | None,
         typer.Option(
