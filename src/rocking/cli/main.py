@@ -142,8 +142,6 @@ def run_command(
     if animate and out is None:
         raise InputError("--animate needs --out DIR to write animation.gif into")
     stack = isinstance(cfg, StackConfig)
-    if animate and stack:
-        raise InputError("--animate: a stack of blocks ([[blocks]]) cannot be animated yet; leave --animate out")
     preflight(cfg, out=out)  # memory and disk limits, before the solver is compiled or run
     if not stack:
         ensure_compiled()  # says so on stderr when the first run on this machine must compile
@@ -152,7 +150,7 @@ def run_command(
     if stack:
         from .stack_run import show_stack_run
 
-        return show_stack_run(cfg, response, config, out=out, as_json=as_json)
+        return show_stack_run(cfg, response, config, out=out, as_json=as_json, animate=animate)
     summary = response.summary()
     if out is not None:
         # the exact count now (events add rows): still nothing written if it does not fit
@@ -173,15 +171,17 @@ def run_command(
                                 f"{MAX_FRAMES} frames); `rocking animate --speed` chooses the speed", markup=False)
             with delayed_spinner("drawing the animation", console=_stderr()):
                 write_animation(response, out / "animation.gif", speed=speed, fps=ANIMATION_FPS)
+    # every file written, by name
+    wrote = f"wrote {', '.join(OUTPUT_FILES + (('animation.gif',) if animate else ()))} to {out}"
     if as_json:
         sys.stdout.write(summary_json(summary) + "\n")
         if out is not None:
-            _stderr().print(f"wrote {', '.join(OUTPUT_FILES)} to {out}", markup=False)
+            _stderr().print(wrote, markup=False)
         return
     console = _stdout()
     console.print(summary_table(summary, title=str(config)))
     if out is not None:
-        console.print(f"wrote {', '.join(OUTPUT_FILES)} to {out}", markup=False)
+        console.print(wrote, markup=False)
 
 
 # ------------------------------------------------------------------------ records

@@ -22,6 +22,7 @@ from rich.table import Table
 
 from ..io.output import summary_json
 from ..io.stack_output import STACK_OUTPUT_FILES, check_stack_output_space, write_stack_outputs
+from .limits import MAX_FRAMES
 from .progress import delayed_spinner
 from .render import _num, _time, outcome_markup
 
@@ -81,7 +82,8 @@ def stack_tables(summary: Mapping[str, Any], *, frictions: list[float | None] | 
     return Group(head, blocks, interfaces)
 
 
-def show_stack_run(cfg: Any, response: Any, config: Path, *, out: Path | None, as_json: bool) -> None:
+def show_stack_run(cfg: Any, response: Any, config: Path, *, out: Path | None, as_json: bool,
+                   animate: bool = False) -> None:
     """Write the outputs of a stack run (with ``--out``) and print its summary.
 
     Parameters
@@ -94,6 +96,8 @@ def show_stack_run(cfg: Any, response: Any, config: Path, *, out: Path | None, a
         ``--out``.
     as_json : bool
         ``--json``: the summary as JSON on stdout, the "wrote" line on stderr.
+    animate : bool
+        ``--animate``: also animation.gif in ``out``.
     """
     from .main import OutputError, _stderr, _stdout
 
@@ -107,7 +111,19 @@ def show_stack_run(cfg: Any, response: Any, config: Path, *, out: Path | None, a
                 write_stack_outputs(response, out, config=cfg)
             except OSError as exc:
                 raise OutputError(f"cannot write the outputs to {out}: {exc}") from None
-    wrote = f"wrote {', '.join(STACK_OUTPUT_FILES)} to {out}"
+        if animate:
+            from ..viz.stack_animation import animate_stack
+            from .main import ANIMATION_FPS
+
+            # a long run plays faster, so that the GIF stays within MAX_FRAMES frames (memory)
+            span = float(response.t[-1] - response.t[0])
+            speed = max(1.0, ANIMATION_FPS * span / MAX_FRAMES)
+            if speed > 1.0:
+                _stderr().print(f"animation.gif plays {speed:.3g} times faster than real time (at most "
+                                f"{MAX_FRAMES} frames); `rocking animate --speed` chooses the speed", markup=False)
+            with delayed_spinner("drawing the animation", console=_stderr()):
+                animate_stack(response, out / "animation.gif", speed=speed, fps=ANIMATION_FPS, title=config.name)
+    wrote = f"wrote {', '.join(STACK_OUTPUT_FILES + (('animation.gif',) if animate else ()))} to {out}"
     if as_json:
         sys.stdout.write(summary_json(summary) + "\n")
         if out is not None:

@@ -52,8 +52,9 @@ def register(app: typer.Typer) -> None:
         )] = MAX_FRAMES,
         max_samples: Annotated[int | None, MAX_SAMPLES_OPTION] = None,
     ) -> None:
-        """Simulate CONFIG and draw the floor, pedestal and statue moving, to scale."""
-        from ..io.config import load_config
+        """Simulate CONFIG and draw the floor, pedestal and statue (or every block of a stack) moving,
+        to scale."""
+        from ..io.config import StackConfig, load_config
         from ..runner import run_response
         from ..solver.warmup import ensure_compiled
         from ..viz import animate
@@ -63,7 +64,7 @@ def register(app: typer.Typer) -> None:
         if speed <= 0 or fps <= 0:
             raise ValueError(f"--speed and --fps must be positive, got {speed} and {fps}")
         cfg = with_max_samples(load_config(config), max_samples)
-        _refuse_stack(cfg, config, "animation")
+        stack = isinstance(cfg, StackConfig)
         hint = "raise --speed to {speed} or more, lower --fps, or raise --max-frames"
         # everything that would stop the writing, found before the simulation
         if out.is_dir():
@@ -76,7 +77,8 @@ def register(app: typer.Typer) -> None:
         preflight(cfg)  # the saved series within simulation.max_samples
         if cfg.simulation.duration is not None:  # the run lasts this long (unless it falls): refuse now
             check_frames(cfg.simulation.duration, speed=speed, fps=fps, max_frames=max_frames, hint=hint)
-        ensure_compiled()
+        if not stack:
+            ensure_compiled()
         _, response = run_response(cfg)
         check_frames(float(response.t[-1] - response.t[0]), speed=speed, fps=fps, max_frames=max_frames, hint=hint)
         out.parent.mkdir(parents=True, exist_ok=True)
@@ -84,7 +86,12 @@ def register(app: typer.Typer) -> None:
         # file they write; hidden, beside the target (the final move is a rename)
         tmp = str(out.parent / f".{out.stem}-{uuid.uuid4().hex[:12]}.tmp{out.suffix}")
         try:
-            animate(response, tmp, speed=speed, fps=fps)
+            if stack:
+                from ..viz.stack_animation import animate_stack
+
+                animate_stack(response, tmp, speed=speed, fps=fps, title=config.name)
+            else:
+                animate(response, tmp, speed=speed, fps=fps)
             os.replace(tmp, out)
         finally:
             if os.path.exists(tmp):
@@ -93,7 +100,7 @@ def register(app: typer.Typer) -> None:
 
 
 def _refuse_stack(cfg, config: Path, what: str) -> None:
-    """A stack of blocks has no report nor animation yet: say so, and what to run instead."""
+    """A stack of blocks has no report yet: say so, and what to run instead."""
     from ..io.config import StackConfig
     from .main import InputError
 
