@@ -139,3 +139,17 @@ def _round_up(x: float) -> str:
         return "1"
     scale = 10 ** (math.floor(math.log10(x)) - 1)
     return f"{math.ceil(x / scale) * scale:.3g}"
+
+
+def gif_speed(span: float, fps: float) -> float:
+    """Playback speed of ``run --animate``'s GIF for a run of ``span`` seconds: real time, or
+    faster so that it stays within MAX_FRAMES frames (a GIF holds them all in memory)."""
+    return max(1.0, fps * span / MAX_FRAMES)
+
+
+def gif_speed_note(speed: float) -> str | None:
+    """What to tell the user when the GIF plays faster than real time."""
+    if speed <= 1.0:
+        return None
+    return (f"animation.gif plays {speed:.3g} times faster than real time (at most {MAX_FRAMES} frames); "
+            "`rocking animate --speed` chooses the speed")

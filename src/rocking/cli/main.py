@@ -39,7 +39,7 @@ from ..runner import run_response
 from ..simulation import ResourceLimitError, SimulationError
 from ..solver.warmup import ensure_compiled
 from .interrupts import exit_code, signal_name, stop_signals
-from .limits import MAX_FRAMES, MAX_SAMPLES_OPTION, ResourceRefused, preflight, with_max_samples
+from .limits import MAX_SAMPLES_OPTION, ResourceRefused, gif_speed, gif_speed_note, preflight, with_max_samples
 from .progress import delayed_spinner
 from .render import g_units, record_info, record_table, summary_table
 
@@ -163,12 +163,9 @@ def run_command(
         if animate:
             from ..viz import animate as write_animation
 
-            # a long run plays faster, so that the GIF stays within MAX_FRAMES frames (memory)
-            span = float(response.t[-1] - response.t[0])
-            speed = max(1.0, ANIMATION_FPS * span / MAX_FRAMES)
-            if speed > 1.0:
-                _stderr().print(f"animation.gif plays {speed:.3g} times faster than real time (at most "
-                                f"{MAX_FRAMES} frames); `rocking animate --speed` chooses the speed", markup=False)
+            speed = gif_speed(float(response.t[-1] - response.t[0]), ANIMATION_FPS)
+            if gif_speed_note(speed):
+                _stderr().print(gif_speed_note(speed), markup=False)
             with delayed_spinner("drawing the animation", console=_stderr()):
                 write_animation(response, out / "animation.gif", speed=speed, fps=ANIMATION_FPS)
     # every file written, by name

@@ -22,7 +22,7 @@ from rich.table import Table
 
 from ..io.output import summary_json
 from ..io.stack_output import STACK_OUTPUT_FILES, check_stack_output_space, write_stack_outputs
-from .limits import MAX_FRAMES
+from .limits import gif_speed, gif_speed_note
 from .progress import delayed_spinner
 from .render import _num, _time, outcome_markup
 
@@ -115,12 +115,9 @@ def show_stack_run(cfg: Any, response: Any, config: Path, *, out: Path | None, a
             from ..viz.stack_animation import animate_stack
             from .main import ANIMATION_FPS
 
-            # a long run plays faster, so that the GIF stays within MAX_FRAMES frames (memory)
-            span = float(response.t[-1] - response.t[0])
-            speed = max(1.0, ANIMATION_FPS * span / MAX_FRAMES)
-            if speed > 1.0:
-                _stderr().print(f"animation.gif plays {speed:.3g} times faster than real time (at most "
-                                f"{MAX_FRAMES} frames); `rocking animate --speed` chooses the speed", markup=False)
+            speed = gif_speed(float(response.t[-1] - response.t[0]), ANIMATION_FPS)
+            if gif_speed_note(speed):
+                _stderr().print(gif_speed_note(speed), markup=False)
             with delayed_spinner("drawing the animation", console=_stderr()):
                 animate_stack(response, out / "animation.gif", speed=speed, fps=ANIMATION_FPS, title=config.name)
     wrote = f"wrote {', '.join(STACK_OUTPUT_FILES + (('animation.gif',) if animate else ()))} to {out}"

@@ -68,6 +68,43 @@ def _state_at(response, times: np.ndarray) -> dict[str, np.ndarray]:
     }
 
 
+def floor_scene(lo: float, hi: float, top: float, ground: float, *, axes_height: float):
+    """A 6 × 4.5 in figure whose axes show x in [lo, hi] and y in [−ground, top] (m) at equal
+    scales (the narrower range is widened to the axes' shape), with the floor drawn as a strip
+    below y = 0. Returns (fig, ax, lo, hi, top) with the widened ranges."""
+    box_w, box_h = 0.96 * 6.0, axes_height * 4.5  # axes size, in
+    if (hi - lo) / (top + ground) < box_w / box_h:
+        extra = 0.5 * ((top + ground) * box_w / box_h - (hi - lo))
+        lo, hi = lo - extra, hi + extra
+    else:
+        top = (hi - lo) * box_h / box_w - ground
+    fig = Figure(figsize=(6.0, 4.5))
+    ax = fig.add_axes((0.02, 0.02, box_w / 6.0, box_h / 4.5))
+    ax.set_xlim(lo, hi)
+    ax.set_ylim(-ground, top)
+    ax.set_axis_off()
+    span = hi - lo
+    ax.add_patch(Rectangle((lo - span, -ground), 3 * span, ground, facecolor="#e4e0d8", edgecolor="none", zorder=1))
+    ax.plot([lo - span, hi + span], [0, 0], color="0.3", lw=1.2, zorder=2)
+    return fig, ax, lo, hi, top
+
+
+def write_frames(fig, path: Path, ext: str, *, fps: float, dpi: int, n_frames: int, draw, swatch: list[str]) -> None:
+    """Draw frame k with ``draw(k)`` for k < n_frames and write them to ``path`` (a GIF with one
+    palette for all frames, or an MP4 through ffmpeg)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if ext == ".gif":
+        writer = _PalettePillowWriter.make(fps, swatch)
+    else:
+        from matplotlib.animation import FFMpegWriter
+
+        writer = FFMpegWriter(fps=fps, codec="h264", extra_args=["-pix_fmt", "yuv420p"])
+    with writer.saving(fig, str(path), dpi):
+        for k in range(n_frames):
+            draw(k)
+            writer.grab_frame()
+
+
 def _statue_outline(xc: float, yb: float, b: float, h: float, theta: float) -> np.ndarray:
     """Corners of the statue whose base centre rests at (xc, yb), rotated clockwise by θ about
     the corner (S·b, 0), S = sign θ (the key-point formula of the Response, Eqs. 8–9)."""
@@ -224,22 +261,9 @@ def animate(
     hi = float(np.max(x_body)) + margin
     top = ph + 1.25 * math.hypot(2 * b, 2 * h)
     ground = 0.08 * top
-    box_w, box_h = 0.96 * 6.0, 0.86 * 4.5  # axes size, in
-    if (hi - lo) / (top + ground) < box_w / box_h:
-        extra = 0.5 * ((top + ground) * box_w / box_h - (hi - lo))
-        lo, hi = lo - extra, hi + extra
-    else:
-        top = (hi - lo) * box_h / box_w - ground
-
-    fig = Figure(figsize=(6.0, 4.5))
-    ax = fig.add_axes((0.02, 0.02, box_w / 6.0, box_h / 4.5))
-    ax.set_xlim(lo, hi)
-    ax.set_ylim(-ground, top)
-    ax.set_axis_off()
-    # floor: a strip with marks that move with the floor; a fixed reference triangle at x = 0
+    fig, ax, lo, hi, top = floor_scene(lo, hi, top, ground, axes_height=0.86)
+    # floor marks that move with the floor; a fixed reference triangle at x = 0
     span = hi - lo
-    ax.add_patch(Rectangle((lo - span, -ground), 3 * span, ground, facecolor="#e4e0d8", edgecolor="none", zorder=1))
-    ax.plot([lo - span, hi + span], [0, 0], color="0.3", lw=1.2, zorder=2)
     spacing = 10 ** math.floor(math.log10(max(span / 8, 1e-6)))
     marks = np.arange(lo - span, hi + span, spacing)
     (floor_marks,) = ax.plot([], [], color="0.45", lw=0.8, zorder=2)
@@ -278,16 +302,6 @@ def animate(
         txt_reg.set_text("overturned" if fallen else REGIME_NAMES[reg])
         txt_reg.get_bbox_patch().set_facecolor("#f6c9c4" if fallen else REGIME_COLORS[reg])
 
-    path.parent.mkdir(parents=True, exist_ok=True)
-    if ext == ".gif":
-        swatch = [*REGIME_COLORS.values(), COLORS["statue"], COLORS["pedestal"], "#e4e0d8", "#f6c9c4", "#000000"]
-        writer = _PalettePillowWriter.make(fps, swatch)
-    else:
-        from matplotlib.animation import FFMpegWriter
-
-        writer = FFMpegWriter(fps=fps, codec="h264", extra_args=["-pix_fmt", "yuv420p"])
-    with writer.saving(fig, str(path), dpi):
-        for k in range(times.size):
-            draw(k)
-            writer.grab_frame()
+    swatch = [*REGIME_COLORS.values(), COLORS["statue"], COLORS["pedestal"], "#e4e0d8", "#f6c9c4", "#000000"]
+    write_frames(fig, path, ext, fps=fps, dpi=dpi, n_frames=times.size, draw=draw, swatch=swatch)
     return path

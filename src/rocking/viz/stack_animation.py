@@ -16,10 +16,9 @@ import os
 from pathlib import Path
 
 import numpy as np
-from matplotlib.figure import Figure
-from matplotlib.patches import Polygon, Rectangle
+from matplotlib.patches import Polygon
 
-from .animation import _PalettePillowWriter, check_animation_path, frame_times
+from .animation import check_animation_path, floor_scene, frame_times, write_frames
 
 __all__ = ["animate_stack", "block_outline"]
 
@@ -65,21 +64,8 @@ def animate_stack(response, path: str | os.PathLike[str], *, speed: float = 1.0,
     lo, hi = float(corners[:, 0].min()) - margin, float(corners[:, 0].max()) + margin
     top = max(float(corners[:, 1].max()), height) + 0.3 * height
     ground = 0.08 * top
-    box_w, box_h = 0.96 * 6.0, 0.80 * 4.5  # axes size, in
-    if (hi - lo) / (top + ground) < box_w / box_h:
-        extra = 0.5 * ((top + ground) * box_w / box_h - (hi - lo))
-        lo, hi = lo - extra, hi + extra
-    else:
-        top = (hi - lo) * box_h / box_w - ground
-
-    fig = Figure(figsize=(6.0, 4.5))
-    ax = fig.add_axes((0.02, 0.02, box_w / 6.0, box_h / 4.5))
-    ax.set_xlim(lo, hi)
-    ax.set_ylim(-ground, top)
-    ax.set_axis_off()
+    fig, ax, lo, hi, top = floor_scene(lo, hi, top, ground, axes_height=0.80)
     span = hi - lo
-    ax.add_patch(Rectangle((lo - span, -ground), 3 * span, ground, facecolor="#e4e0d8", edgecolor="none", zorder=1))
-    ax.plot([lo - span, hi + span], [0, 0], color="0.3", lw=1.2, zorder=2)
     # a ruler on the floor: ticks every `step` m, labelled, so that the scale reads off the picture
     step = _nice_step(span / 6)
     for x in np.arange(math.ceil(lo / step) * step, hi, step):
@@ -111,15 +97,6 @@ def animate_stack(response, path: str | os.PathLike[str], *, speed: float = 1.0,
         txt_verdict.set_text(f"{first_fall[1]} overturned" if fallen else "standing")
         txt_verdict.get_bbox_patch().set_facecolor("#f6c9c4" if fallen else "#dff0d8")
 
-    path.parent.mkdir(parents=True, exist_ok=True)
-    if ext == ".gif":
-        writer = _PalettePillowWriter.make(fps, [*BLOCK_COLORS, "#e4e0d8", "#f6c9c4", "#dff0d8", "#000000"])
-    else:
-        from matplotlib.animation import FFMpegWriter
-
-        writer = FFMpegWriter(fps=fps, codec="h264", extra_args=["-pix_fmt", "yuv420p"])
-    with writer.saving(fig, str(path), dpi):
-        for f in range(times.size):
-            draw(f)
-            writer.grab_frame()
+    write_frames(fig, path, ext, fps=fps, dpi=dpi, n_frames=times.size, draw=draw,
+                 swatch=[*BLOCK_COLORS, "#e4e0d8", "#f6c9c4", "#dff0d8", "#000000"])
     return path
