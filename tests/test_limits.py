@@ -289,9 +289,9 @@ def test_run_animate_plays_a_long_run_faster_within_the_frame_limit(tmp_path, ca
 
     from PIL import Image
 
-    cli_main = sys.modules["rocking.cli.main"]  # the package's `main` names the function
+    limits = sys.modules["rocking.cli.limits"]  # where the GIF's speed rule lives
 
-    monkeypatch.setattr(cli_main, "MAX_FRAMES", 20)  # 2 s at 25 frames/s would be 50
+    monkeypatch.setattr(limits, "MAX_FRAMES", 20)  # 2 s at 25 frames/s would be 50
     code, _, err = _cli(capsys, "run", _toml(tmp_path), "--out", tmp_path / "o", "--animate", "--json")
     assert code == 0, err
     assert "animation.gif plays 2.5 times faster than real time (at most 20 frames)" in err
