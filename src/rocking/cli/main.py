@@ -74,6 +74,24 @@ app = typer.Typer(
 )
 
 
+def write_run_files(out: Path, response, write, draw=None) -> None:
+    """Write a run's files into ``out`` with ``write()`` and, if ``draw`` is given, its
+    animation.gif with ``draw(response, path, speed=…, fps=…)``: a long run plays faster, so that
+    the GIF stays within MAX_FRAMES frames (memory). An OSError becomes OutputError (exit 1)."""
+    with delayed_spinner(f"writing {out}", console=_stderr()):
+        try:
+            write()
+        except OSError as exc:
+            raise OutputError(f"cannot write the outputs to {out}: {exc}") from None
+    if draw is not None:
+        speed = gif_speed(float(response.t[-1] - response.t[0]), ANIMATION_FPS)
+        note = gif_speed_note(speed)
+        if note:
+            _stderr().print(note, markup=False)
+        with delayed_spinner("drawing the animation", console=_stderr()):
+            draw(response, out / "animation.gif", speed=speed, fps=ANIMATION_FPS)
+
+
 def _stdout() -> Console:
     # built per call: tests swap sys.stdout, and a console made at import would miss it
     console = Console(highlight=False)
@@ -155,19 +173,10 @@ def run_command(
     if out is not None:
         # the exact count now (events add rows): still nothing written if it does not fit
         check_output_space(len(response.t), out, hint="raise simulation.save_dt or shorten simulation.duration")
-        with delayed_spinner(f"writing {out}", console=_stderr()):
-            try:
-                write_outputs(response, out, config=cfg)
-            except OSError as exc:
-                raise OutputError(f"cannot write the outputs to {out}: {exc}") from None
-        if animate:
-            from ..viz import animate as write_animation
+        from ..viz import animate as write_animation
 
-            speed = gif_speed(float(response.t[-1] - response.t[0]), ANIMATION_FPS)
-            if gif_speed_note(speed):
-                _stderr().print(gif_speed_note(speed), markup=False)
-            with delayed_spinner("drawing the animation", console=_stderr()):
-                write_animation(response, out / "animation.gif", speed=speed, fps=ANIMATION_FPS)
+        write_run_files(out, response, lambda: write_outputs(response, out, config=cfg),
+                        write_animation if animate else None)
     # every file written, by name
     wrote = f"wrote {', '.join(OUTPUT_FILES + (('animation.gif',) if animate else ()))} to {out}"
     if as_json:

@@ -22,8 +22,6 @@ from rich.table import Table
 
 from ..io.output import summary_json
 from ..io.stack_output import STACK_OUTPUT_FILES, check_stack_output_space, write_stack_outputs
-from .limits import gif_speed, gif_speed_note
-from .progress import delayed_spinner
 from .render import _num, _time, outcome_markup
 
 __all__ = ["show_stack_run", "stack_tables"]
@@ -99,27 +97,19 @@ def show_stack_run(cfg: Any, response: Any, config: Path, *, out: Path | None, a
     animate : bool
         ``--animate``: also animation.gif in ``out``.
     """
-    from .main import OutputError, _stderr, _stdout
+    from .main import _stderr, _stdout
 
     summary = response.summary()
     if out is not None:
         # the exact count now (events add rows): still nothing written if it does not fit
         check_stack_output_space(len(response.t), response.stack.n, out,
                                  hint="raise simulation.save_dt or shorten simulation.duration")
-        with delayed_spinner(f"writing {out}", console=_stderr()):
-            try:
-                write_stack_outputs(response, out, config=cfg)
-            except OSError as exc:
-                raise OutputError(f"cannot write the outputs to {out}: {exc}") from None
-        if animate:
-            from ..viz.stack_animation import animate_stack
-            from .main import ANIMATION_FPS
+        from ..viz.stack_animation import animate_stack
+        from .main import write_run_files
 
-            speed = gif_speed(float(response.t[-1] - response.t[0]), ANIMATION_FPS)
-            if gif_speed_note(speed):
-                _stderr().print(gif_speed_note(speed), markup=False)
-            with delayed_spinner("drawing the animation", console=_stderr()):
-                animate_stack(response, out / "animation.gif", speed=speed, fps=ANIMATION_FPS, title=config.name)
+        draw = (lambda r, path, speed, fps: animate_stack(r, path, speed=speed, fps=fps, title=config.name))
+        write_run_files(out, response, lambda: write_stack_outputs(response, out, config=cfg),
+                        draw if animate else None)
     wrote = f"wrote {', '.join(STACK_OUTPUT_FILES + (('animation.gif',) if animate else ()))} to {out}"
     if as_json:
         sys.stdout.write(summary_json(summary) + "\n")

@@ -184,6 +184,21 @@ def identify_ends(P, ends, anchor, k, z, direction, tol, out):
 
 
 @njit(cache=True)
+def refresh_ends(P, ends, anchor, k, z, zd, direction):
+    """Set interface k's end descriptors to the corners that make its ends now (identify_ends),
+    re-anchoring if the anchor's corner changed."""
+    ends_new = np.empty((2, 2))
+    identify_ends(P, ends, anchor, k, z, direction, 1e-12, ends_new)
+    for e in range(2):
+        if ends_new[e, 0] != ends[k, e, 0]:
+            if e == anchor[k]:
+                reanchor(P, ends, anchor, k, z, zd, e, ends_new[e, 0], ends_new[e, 1])
+            else:
+                ends[k, e, 0] = ends_new[e, 0]
+                ends[k, e, 1] = ends_new[e, 1]
+
+
+@njit(cache=True)
 def reanchor(P, ends, anchor, k, z, zd, e_new, type_new, x_new):
     """Move interface k's anchor to end ``e_new`` (corner ``type_new`` at ``x_new``), keeping
     the pose; updates z, ż, ends and anchor in place."""

@@ -43,7 +43,8 @@ from .kinematics import (
 )
 from .model import Stack
 
-STATUS_NAMES = ("completed", "overturned", "max_events", "inconsistent", "step_failed", "still_moving")
+STATUS_NAMES = ("completed", "overturned", "max_events", "inconsistent", "step_failed", "still_moving",
+                "slid_past_edge")
 _FLOOR_HALF_WIDTH = 1e300  # the floor's face has no end
 
 
