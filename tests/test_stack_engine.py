@@ -399,5 +399,6 @@ def test_a_block_sliding_to_the_edge_of_the_one_below_stops_the_run_undetermined
     r = simulate_stack(stack, rocking.RectanglePulse(amplitude=a, width=2.0), duration=2.0, options={"gravity": G})
     assert r.status == "slid_past_edge"
     assert abs(r.end_time - math.sqrt(2 * 0.1 / (a - mu * G))) < 1e-9
-    assert r.verdict.startswith("undetermined")
+    assert r.verdict == (f"undetermined: {stack.names[1]} slid to the edge of {stack.names[0]} at t = {r.end_time:.3f} s; "
+                         "the model stops there (treat it as falling off)")
     assert abs(r.blocks[1]["residual_sliding"] + 0.1) < 1e-9

@@ -131,6 +131,12 @@ class StackResponse:
         if fallen:
             first = min(fallen, key=lambda b: b["overturn_time"])
             return f"{first['name']} overturned at t = {first['overturn_time']:.3f} s"
+        if self.status == "slid_past_edge" and len(self.events):
+            # the engine's last event names the block whose corner reached the edge
+            k = int(self.events[-1, 1])
+            below = self.stack.names[k - 1] if k > 0 else "the floor"
+            return (f"undetermined: {self.stack.names[k]} slid to the edge of {below} at t = {self.end_time:.3f} s; "
+                    "the model stops there (treat it as falling off)")
         return verdict_text(self.status, None, self.end_time)
 
     def summary(self) -> dict:
