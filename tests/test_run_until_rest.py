@@ -196,7 +196,10 @@ def test_an_implausible_pga_is_flagged():
 
 # ------------------------------------------------------------------------------ interrupts
 _LONG_RUN = """
-import sys, time
+import signal, sys, time
+# Ctrl-C as in a terminal: a test runner started in the background (nohup, `cmd &` in a script)
+# hands its children SIGINT ignored, and an ignored signal rightly stays ignored (solver/signals.py).
+signal.signal(signal.SIGINT, signal.default_int_handler)
 import rocking as rk
 system = rk.System(statue=rk.Statue(width=1.0, height=4.0, mass=1.0),
                    pedestal=rk.Pedestal(mass=1.0, friction=rk.Friction(static=0.1, kinetic=0.08)))
