@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import csv
 import math
+import os
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -67,6 +68,7 @@ __all__ = [
     "outcome_rows",
     "run_paper_cases",
     "outcome_table_markdown",
+    "outcome_summary",
     "write_outcome_table",
     "outcome_dataset",
     "friction_sweep",
@@ -391,6 +393,46 @@ def run_paper_cases(
 # ---------------------------------------------------------------------------------------------
 # Output: Markdown, CSV, xarray
 # ---------------------------------------------------------------------------------------------
+#: The page that explains every verdict of the table (linked from paper_outcomes.md).
+DOCS_PAGE = "docs/paper-case-studies.md"
+
+#: The columns of the Markdown table and what each means (the key under the table).
+MD_COLUMNS: tuple[tuple[str, str], ...] = (
+    ("Fig.", "the paper's figure, i.e. the case of its Table 2. A row naming several figures "
+             "(\"11a–12b\") stands for cases whose rows read the same: the statue alone does not depend "
+             "on its mass (the paper's C4)."),
+    ("run", "which model: the statue on the pedestal with this library's default model (full floor normal "
+            "force, Coulomb-bounded impact) or with the paper's simplifications (N = M·g, θ̇⁺ = r·θ̇⁻); or "
+            "the statue alone, on a floor it can never slide on (μ = ∞, the paper's baseline) or on the "
+            "pedestal's floor friction."),
+    ("t = 0⁺", "the motion just after the start: *slide* (the body on the floor slides, the statue stands "
+               "on it), *rock* (the statue rocks, the body under it holds), *slide+rock* (both), *rest*."),
+    ("overturned (\\|θ\\| = π/2)", "*yes (t)* if the statue fell, |θ| reaching π/2 at time t; *no* otherwise."),
+    ("\\|θ\\| > α", "*yes (t)* if the statue passed its static stability limit α = atan(B/H), first at time t."),
+    ("peak θ/α", "the largest |θ| divided by α: 1 is the stability limit; a fall reaches π/2 ÷ α."),
+    ("peak u (m)", "the largest sliding on the floor, relative to the floor, of the pedestal (or of the "
+                   "statue alone)."),
+    ("residual u (m)", "that sliding at the end of the run."),
+    ("impacts", "how many times the statue struck its base on landing from a rock."),
+    ("first rock / slide (s)", "when the statue first rocked / the body on the floor first slid; – never."),
+    ("μ top", "the largest friction ratio |Px|/Py needed under the statue (on the pedestal's top face, or on "
+              "the floor for the statue alone), while |θ| ≤ α: above the available μs the statue would slip."),
+    ("warn.", "how many of the model's warnings the run raised (their texts are in paper_outcomes.csv, column "
+              "warning_text); \"still moving when the run ended\" is one of them."),
+    ("at the end", "*moving* if the statue or the pedestal had not come to rest when the paper's window "
+                   "closed (whether it would still fall later is not decided), *at rest*, or *fallen*."),
+    ("paper says", "the paper's statement for this statue: alone it *rocks* or *overturns*; on the pedestal "
+                   "its response *does not change significantly*, *overturning avoided* or *overturning only "
+                   "delayed*."),
+    ("agrees (π/2)", "whether this run bears the statement out when \"overturning\" means |θ| = π/2 (the "
+                     "paper never defines it). *rocks*: peak θ/α ≥ {visible} and no fall; *overturns*: falls; "
+                     "*overturning avoided*: no fall; *overturning only delayed*: falls later than the statue "
+                     "alone with μ = ∞; *does not change significantly*: peak θ/α within ±{change:.0%} of the "
+                     "statue alone with μ = ∞ and the same verdict. **no** marks a disagreement."),
+    ("agrees (α)", "the same judgement when \"overturning\" means passing α (|θ| > α)."),
+)
+
+
 def _t(flag: bool, time: float | None) -> str:
     return f"yes ({time:.2f} s)" if flag and time is not None else "no"
 
@@ -403,36 +445,188 @@ def _yes(flag: bool) -> str:
     return "yes" if flag else "**no**"
 
 
-def outcome_table_markdown(rows: Sequence[Mapping[str, Any]]) -> str:
-    """The outcome table as GitHub Markdown (one line per case and variant)."""
-    header = (
-        "| Fig. | run | t = 0⁺ | overturned (\\|θ\\| = π/2) | \\|θ\\| > α | peak θ/α | peak u (m) "
-        "| residual u (m) | impacts | first rock / slide (s) | μ top | warn. | paper says "
-        "| agrees (π/2) | agrees (α) |"
-    )
-    lines = [header, "|" + "---|" * header.count(" | ") + "---|"]
+def _end_state(row: Mapping[str, Any]) -> str:
+    if row["overturned"]:
+        return "fallen"
+    if row["still_moving"]:
+        return "moving"
+    return "at rest" if row["status"] == "completed" else str(row["status"])
+
+
+def _cells(row: Mapping[str, Any]) -> list[str]:
+    """The table cells of one row after its Fig. cell."""
+    first = f"{_opt_time(row['first_rocking_time'])} / {_opt_time(row['first_sliding_time'])}"
+    return [
+        row["variant_label"],
+        row["initial_regime"].lower().replace("_", "+"),
+        _t(row["overturned"], row["overturn_time"]),
+        _t(row["exceeded_alpha"], row["exceeded_alpha_time"]),
+        f"{row['peak_rotation_over_alpha']:.3f}",
+        f"{row['peak_sliding']:.3f}",
+        f"{row['residual_sliding']:+.3f}",
+        str(row["impacts"]),
+        first,
+        f"{row['required_top_friction']:.3f}",
+        str(row["warnings"]),
+        _end_state(row),
+        row["paper_outcome"],
+        _yes(row["agrees"]),
+        _yes(row["agrees_alpha_criterion"]),
+    ]
+
+
+def _case_span(names: Sequence[str], order: Sequence[str]) -> str:
+    """"11a–12b" for consecutive cases (three or more, in ``order``), else "9a, 10a"."""
+    positions = [order.index(n) for n in names]
+    if len(names) >= 3 and positions == list(range(positions[0], positions[0] + len(names))):
+        return f"{names[0]}–{names[-1]}"
+    return ", ".join(names)
+
+
+def _table(rows: Sequence[Mapping[str, Any]], order: Sequence[str]) -> list[str]:
+    """Markdown lines of one table; rows of one run that read the same in every cell but Fig. are
+    folded into one."""
+    folded: dict[tuple[str, ...], list[str]] = {}
+    for row in rows:
+        folded.setdefault((row["variant"], *_cells(row)), []).append(row["case"])
+    header = "| " + " | ".join(name for name, _ in MD_COLUMNS) + " |"
+    lines = [header, "|" + "---|" * len(MD_COLUMNS)]
+    for (_, *cells), names in folded.items():
+        lines.append(f"| {_case_span(names, order)} | " + " | ".join(cells) + " |")
+    return lines
+
+
+def _counts(rows: Sequence[Mapping[str, Any]], variant: str) -> dict[str, Any]:
+    mine = [r for r in rows if r["variant"] == variant]
+    return {
+        "cases": len(mine),
+        "fell": [r["case"] for r in mine if r["overturned"]],
+        "passed_alpha": [r["case"] for r in mine if r["exceeded_alpha"]],
+        "peak": max((r["peak_rotation_over_alpha"] for r in mine if not r["overturned"]), default=0.0),
+    }
+
+
+def _failed_claims(rows: Sequence[Mapping[str, Any]], key: str) -> str:
+    """The paper's statements the rows contradict, in words: "on the pedestal, “x” (9a, 9b) and
+    “y” (11a); alone, “z” (10a)"."""
+    groups: dict[str, dict[str, list[str]]] = {"on the pedestal": {}, "alone": {}}
     for r in rows:
-        first = f"{_opt_time(r['first_rocking_time'])} / {_opt_time(r['first_sliding_time'])}"
-        fell = _t(r["overturned"], r["overturn_time"]) + (" (still moving at the end)" if r.get("still_moving") else "")
+        if not r[key]:
+            where = "alone" if r["variant"].startswith("alone") else "on the pedestal"
+            groups[where].setdefault(r["paper_outcome"], []).append(r["case"])
+    return "; ".join(
+        f"{where}, " + " and ".join(f"“{claim}” ({', '.join(cases)})" for claim, cases in claims.items())
+        for where, claims in groups.items()
+        if claims
+    )
+
+
+def outcome_summary(rows: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
+    """The numbers the summary of ``paper_outcomes.md`` states, computed from the table's rows.
+
+    The paper's claims are judged as the paper compares: the statue on the pedestal with the
+    default model (``pedestal`` rows) and the statue alone with μ = ∞ (its baseline), one
+    statement each per case.
+    """
+    judged = [r for r in rows if r["variant"] in ("pedestal", "alone_infinite_friction")]
+    return {
+        "pedestal": _counts(rows, "pedestal"),
+        "pedestal_paper_options": _counts(rows, "pedestal_paper_options"),
+        "alone_infinite_friction": _counts(rows, "alone_infinite_friction"),
+        "alone_floor_friction": _counts(rows, "alone_floor_friction"),
+        "claims": len(judged),
+        "claims_hold": sum(bool(r["agrees"]) for r in judged),
+        "claims_hold_alpha": sum(bool(r["agrees_alpha_criterion"]) for r in judged),
+        "failed": _failed_claims(judged, "agrees"),
+        "failed_alpha": _failed_claims(judged, "agrees_alpha_criterion"),
+        "runs": len(rows),
+        "still_moving": sum(bool(r["still_moving"]) for r in rows),
+    }
+
+
+def _listed(cases: Sequence[str]) -> str:
+    return f" ({', '.join(cases)})" if cases else ""
+
+
+def _summary_lines(rows: Sequence[Mapping[str, Any]]) -> list[str]:
+    s = outcome_summary(rows)
+    ped, opt = s["pedestal"], s["pedestal_paper_options"]
+    alone, floor = s["alone_infinite_friction"], s["alone_floor_friction"]
+
+    def survives(c: dict[str, Any]) -> str:
+        return (f"survives in {c['cases'] - len(c['fell'])} of {c['cases']} cases{_listed(c['fell'])}"
+                if c["fell"] else f"survives in {c['cases']} of {c['cases']} cases")
+
+    lines = [
+        f"- **On the pedestal**, the statue {survives(ped)} and passes its stability limit α in "
+        f"{len(ped['passed_alpha'])} of {ped['cases']}{_listed(ped['passed_alpha'])}; its largest peak is "
+        f"{ped['peak']:.3f}α. With the paper's simplifications (N = M·g, θ̇⁺ = r·θ̇⁻) it {survives(opt)} "
+        "and "
+        f"passes α in {len(opt['passed_alpha'])} of {opt['cases']}{_listed(opt['passed_alpha'])}; largest peak "
+        f"{opt['peak']:.3f}α.",
+        f"- **Alone, on a floor it cannot slide on** (the paper's baseline), the statue falls in "
+        f"{len(alone['fell'])} of {alone['cases']} cases{_listed(alone['fell'])} and passes α in "
+        f"{len(alone['passed_alpha'])} of {alone['cases']}{_listed(alone['passed_alpha'])}.",
+        f"- **Alone, on the pedestal's floor friction**, it falls in {len(floor['fell'])} of {floor['cases']} "
+        f"cases{_listed(floor['fell'])} and passes α in {len(floor['passed_alpha'])} of "
+        f"{floor['cases']}{_listed(floor['passed_alpha'])}.",
+        f"- **The paper's claims** (one on the statue alone and one on the pedestal per case, judged with "
+        f"the default model against the baseline) hold in {s['claims_hold']} of {s['claims']} if "
+        f"\"overturning\" means falling (|θ| = π/2), and in {s['claims_hold_alpha']} of {s['claims']} if it "
+        f"means passing α.",
+    ]
+    if s["failed"]:
+        lines.append(f"  - Not borne out with |θ| = π/2: {s['failed']}.")
+    if s["failed_alpha"]:
+        lines.append(f"  - Not borne out with |θ| > α: {s['failed_alpha']}.")
+    if s["still_moving"]:
         lines.append(
-            f"| {r['case']} | {r['variant_label']} | {r['initial_regime'].lower().replace('_', '+')} "
-            f"| {fell} | {_t(r['exceeded_alpha'], r['exceeded_alpha_time'])} "
-            f"| {r['peak_rotation_over_alpha']:.3f} | {r['peak_sliding']:.3f} | {r['residual_sliding']:+.3f} "
-            f"| {r['impacts']} | {first} | {r['required_top_friction']:.3f} | {r['warnings']} "
-            f"| {r['paper_outcome']} | {_yes(r['agrees'])} | {_yes(r['agrees_alpha_criterion'])} |"
+            f"- {s['still_moving']} of {s['runs']} runs were still moving when the paper's window closed: "
+            "their verdict covers that window only."
         )
-    first = rows[0] if rows else None
-    if first is not None:
-        lines.append("")
-        lines.append(
-            f"A = {first['amplitude']} m/s², ω = {first['omega']:.4f} s⁻¹, ẍg = A·{first['form']} ωt, "
-            f"g = {first['gravity']} m/s², r = {first['restitution']}, pedestal m1 = {TABLE_1.pedestal_mass} kg "
-            f"on μs = {TABLE_1.static_friction}, μk = {TABLE_1.kinetic_friction}. "
-            "u: sliding of the body on the floor (pedestal, or the statue alone). "
-            "μ top: largest friction ratio |Px|/Py needed under the statue (sampled at every solver stage and at impacts, while |θ| ≤ α). "
-            "Each run lasts the paper's window; \"still moving at the end\" marks a run whose statue or pedestal had "
-            "not come to rest when the window closed: whether it would still fall is not decided by that window."
-        )
+    return lines
+
+
+def outcome_table_markdown(rows: Sequence[Mapping[str, Any]], *, docs_link: str = DOCS_PAGE) -> str:
+    """The outcome table as a GitHub Markdown document: a title, a summary computed from ``rows``,
+    one table for the statue on the pedestal and one for the statue alone (rows that read the same
+    folded into one), the key of the columns and a link (``docs_link``) to the page that explains
+    every verdict."""
+    if not rows:
+        return "# The paper's case studies, rerun\n\nNo case was run.\n"
+    first = rows[0]
+    order = list(dict.fromkeys(r["case"] for r in rows))
+    durations = sorted({r["duration"] for r in rows})
+    window = f"{durations[0]:g} s" if len(durations) == 1 else f"{durations[0]:g}–{durations[-1]:g} s"
+    lines = [
+        "# The paper's case studies (Figs. 9–12), rerun",
+        "",
+        f"{len(order)} statues of the paper's Table 2, each alone and on a pedestal of "
+        f"m1 = {TABLE_1.pedestal_mass:g} kg that slides on the floor (μs = {TABLE_1.static_friction}, "
+        f"μk = {TABLE_1.kinetic_friction}), under ẍg = A·{first['form']} ωt with A = {first['amplitude']} m/s², "
+        f"ω = {first['omega']:.4f} s⁻¹, "
+        f"for the paper's window of {window}; g = {first['gravity']} m/s², r = {first['restitution']}.",
+        "",
+        "## Summary",
+        "",
+        *_summary_lines(rows),
+        "",
+        f"Why each statement holds or fails, case by case: [{DOCS_PAGE}]({docs_link}).",
+        "",
+        "## The statue on the pedestal",
+        "",
+        *_table([r for r in rows if not r["variant"].startswith("alone")], order),
+        "",
+        "## The statue alone on the floor",
+        "",
+        *_table([r for r in rows if r["variant"].startswith("alone")], order),
+        "",
+        "## Key",
+        "",
+    ]
+    for name, meaning in MD_COLUMNS:
+        text = meaning.format(visible=VISIBLE_ROCKING, change=SIGNIFICANT_CHANGE) if "{" in meaning else meaning
+        lines.append(f"- **{name}**: {text}")
     return "\n".join(lines) + "\n"
 
 
@@ -444,8 +638,21 @@ def _csv_value(v: Any) -> Any:
     return v
 
 
+def _docs_link(md_dir: Path) -> str:
+    """Where :data:`DOCS_PAGE` lies seen from ``md_dir``: a relative path when this library runs
+    from its source tree (the page exists on disk), else the page's path in that tree."""
+    page = Path(__file__).resolve().parents[3] / DOCS_PAGE
+    if not page.is_file():
+        return DOCS_PAGE
+    try:
+        return Path(os.path.relpath(page, md_dir.resolve())).as_posix()
+    except ValueError:  # another drive (Windows): no relative path exists
+        return page.as_uri()
+
+
 def write_outcome_table(rows: Sequence[Mapping[str, Any]], out_dir: str | Path) -> tuple[Path, Path]:
-    """Write ``paper_outcomes.csv`` (every column) and ``paper_outcomes.md`` into ``out_dir``."""
+    """Write ``paper_outcomes.csv`` (every column) and ``paper_outcomes.md`` (title, summary,
+    tables, key and a link to the explanations, see :func:`outcome_table_markdown`) into ``out_dir``."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     csv_path, md_path = out / "paper_outcomes.csv", out / "paper_outcomes.md"
@@ -455,7 +662,7 @@ def write_outcome_table(rows: Sequence[Mapping[str, Any]], out_dir: str | Path) 
         writer.writeheader()
         for row in rows:
             writer.writerow({k: _csv_value(v) for k, v in row.items()})
-    md_path.write_text(outcome_table_markdown(rows), encoding="utf-8")
+    md_path.write_text(outcome_table_markdown(rows, docs_link=_docs_link(out)), encoding="utf-8")
     return csv_path, md_path
 
 

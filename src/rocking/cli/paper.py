@@ -37,8 +37,8 @@ def paper(
     ] = None,
 ) -> None:
     """Rerun the paper's eight case studies (Table 2) in four variants each, write one figure per
-    case (paper_fig_<case>.png), paper_outcomes.csv and paper_outcomes.md into --out, and print
-    the Markdown table."""
+    case (paper_fig_<case>.png, all on one vertical scale), paper_outcomes.csv (every column) and
+    paper_outcomes.md (a summary, the tables and their key) into --out, and print the Markdown."""
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
