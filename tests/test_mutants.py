@@ -284,3 +284,46 @@ def test_a_plastic_impact_on_a_held_pedestal_is_consistent():
     u1, w1, fx, fy, ok = impact_coulomb(statue.inertia_about_corner, m_tot, m2, b, h, 0.0, 10.0, 10.0, 1.0, 0.0, 0.44)
     assert (u1, w1, ok) == (0.0, 0.0, True)
     assert fx == pytest.approx(-m2 * h * 0.44, rel=1e-14) and fy == pytest.approx(m2 * b * 0.44, rel=1e-14)
+
+
+# ------------------------------------------------------------------------------------------------
+# models/parameters.py: the "not given" sentinels of the statue–pedestal checks
+# ------------------------------------------------------------------------------------------------
+
+
+def _statue_thrown_up_on_a_held_pedestal(top_friction):
+    """A 0.3 × 1.5 m statue rocking on a pedestal that cannot slide (μ = 3), while the floor
+    drops at 9 m/s² for 0.4 s: its base force nearly vanishes, so the friction it needs from the
+    pedestal's top face exceeds 1 (measured 1.17), without lift-off."""
+    from rocking.excitation.record import GroundMotion
+
+    t = np.arange(0.0, 4.0, 0.005)
+    horizontal = np.where(t < 1.0, 3.0 * np.sin(2 * np.pi * 1.5 * t), 0.0)
+    vertical = np.where((t > 0.5) & (t < 0.9), -9.0, 0.0)
+    statue = rk.Statue(width=0.3, height=1.5, mass=100.0, friction=top_friction)
+    pedestal = rk.Pedestal(mass=50.0, friction=rk.Friction(static=3.0, kinetic=3.0))
+    return rk.simulate(rk.System(statue=statue, pedestal=pedestal), GroundMotion(time=t, values=horizontal, vertical=vertical))
+
+
+def test_no_top_face_slip_warning_without_a_top_face_friction():
+    """parameters.py:37 `p[MU_TOP] = 1.0` for −1.0 when no top friction is given: a statue that
+    needs more than μ = 1 from the top face would be said to slip on a face whose friction nobody
+    gave. With μs = 0.9 given, the warning is due."""
+    slip = "the statue would slip on the pedestal"
+    free = _statue_thrown_up_on_a_held_pedestal(None)
+    assert free.summary()["required_top_friction"] > 1.0
+    assert not any(slip in w for w in free.warnings), free.warnings
+    given = _statue_thrown_up_on_a_held_pedestal(rk.Friction(static=0.9))
+    assert any(slip in w for w in given.warnings), given.warnings
+
+
+@pytest.mark.parametrize(("width", "height", "uplift"), [(None, 3.0, False), (0.4, None, False), (0.5, 3.0, True)],
+                         ids=["no width", "no height", "both"])
+def test_the_pedestal_uplift_check_needs_both_its_width_and_height(width, height, uplift):
+    """parameters.py:39/40 `else 1.0` for −1.0: a pedestal whose width (or height) was not given
+    would be checked for uplift as if it were 2 m wide (or 1 m tall). Under 0.8 g a pedestal 3 m
+    tall and 0.5 m wide uplifts at once; without both sizes nothing can be said."""
+    statue = rk.Statue(width=0.3, height=1.5, mass=100.0)
+    pedestal = rk.Pedestal(mass=100.0, friction=rk.Friction(static=3.0, kinetic=3.0), width=width, height=height)
+    r = rk.simulate(rk.System(statue=statue, pedestal=pedestal), rk.Harmonic(amplitude=0.8 * 9.81, frequency=1.5, cycles=3))
+    assert any("pedestal would uplift" in w for w in r.warnings) is uplift, r.warnings
