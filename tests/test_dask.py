@@ -71,3 +71,18 @@ def test_spectrum_on_dask_equals_local_processes(client):
     on_dask = overturning_spectrum(system, ["sine", "cosine"], workers=client, **kw)
     xr.testing.assert_identical(local, on_dask)
     assert np.isfinite(local.amplitude_ratio.values).all()
+
+
+def test_two_face_design_of_a_stack_on_dask_equals_local_processes(client, tmp_path):
+    from rocking.stack import Block, Interface, Stack
+
+    stack = Stack(blocks=(Block(name="pedestal", width=1.2, height=0.4, mass=300.0),
+                          Block(name="statue", width=0.4, height=1.6, mass=200.0)),
+                  interfaces=(Interface(friction=rk.Friction(static=0.3, kinetic=0.24)),
+                              Interface(friction=rk.Friction(static=0.5, kinetic=0.4))))
+    motions = motion_family("harmonic", [4.0], [0.8, 1.6], cycles=3)
+    kw = dict(mu_s=[0.2, 0.45], mu_s_top=[0.15, 0.6], free_time=3.0, options=OPTS, chunk_size=3)
+    local = friction_design(stack, motions, workers=2, folder=tmp_path / "local", **kw)
+    on_dask = friction_design(stack, motions, workers=DaskExecutor(client), **kw)
+    xr.testing.assert_identical(local, on_dask)
+    assert local.attrs["engine"] == "stack" and local.block.values.tolist() == ["pedestal", "statue"]

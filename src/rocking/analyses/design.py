@@ -43,6 +43,7 @@ import numpy as np
 from ..contact.friction import Friction
 from ..models.bodies import System
 from ..simulation import Options
+from ..stack.model import Block, Interface, Stack
 from .batch import replace_at
 from .store import Run, run_stored
 
@@ -59,6 +60,8 @@ __all__ = [
     "plot_design",
     "ranking_rule",
     "run_undetermined",
+    "stack_of_system",
+    "two_face_design",
 ]
 
 OBJECTIVES = ("mean", "median", "max")
@@ -152,10 +155,18 @@ def _names(names: Sequence[str], most: int = 6) -> str:
     return shown + (f" and {len(names) - most} more" if len(names) > most else "")
 
 
-def ranking_rule(friction_scatter: float, objective: str = "mean") -> str:
-    """The ranking of :func:`choose_design` in one sentence, for reports and the web page."""
+def ranking_rule(friction_scatter: float, objective: str = "mean", *, two_face: bool = False) -> str:
+    """The ranking of :func:`choose_design` in one sentence, for reports and the web page
+    (``two_face``: of :func:`two_face_design`)."""
     s = _check_scatter(friction_scatter)
     band = f"at μs and μs·(1 ± {s:g}), μk alike" if s > 0 else "at the nominal friction"
+    if two_face:
+        band = f"with both faces at μs and μs·(1 ± {s:g}), μk alike" if s > 0 else "at the nominal friction"
+        return (f"safety first: a candidate is safe if, under every motion {band}, no block falls, none slides to "
+                f"the edge of the block below and every run ends at rest; among the safe candidates that meet the "
+                f"limits, the smallest {objective} peak θ/α, the least free space on the floor, then the smaller "
+                f"floor μs, the lighter pedestal, the smaller top μs, the narrower pedestal; if no safe candidate "
+                f"meets the limits, the safe one needing the least free space, and nothing if none is safe")
     return (f"safety first: a value is safe if the statue neither falls nor is left moving under any motion {band}; "
             f"among the safe values that meet the limits, μs·(1 + s) below the statue–pedestal face's friction, "
             f"then the smallest {objective} peak θ/α, the least free space, the smaller μs, the lighter pedestal; if no safe "
@@ -182,6 +193,10 @@ class DesignChoice:
     fewest_overturns: tuple[int, int] | None
     fewest_overturns_within_limits: bool
     lines: tuple[str, ...]
+    #: (μs, mass, *extra, motion): a block slid to the edge of the one below (stack runs), or None
+    slid_off: np.ndarray | None = None
+    #: the candidate axes after (μs, mass): ((name, values), …), e.g. mu_s_top, pedestal_width
+    extra_axes: tuple[tuple[str, np.ndarray], ...] = ()
 
     @property
     def verdict(self) -> str:
@@ -193,6 +208,11 @@ class DesignChoice:
 
     def undetermined_motions(self, ij: tuple[int, int]) -> list[str]:
         return [m for m, u in zip(self.motions, self.undetermined[ij]) if u]
+
+    def slid_off_motions(self, ij: tuple[int, ...]) -> list[str]:
+        if self.slid_off is None:
+            return []
+        return [m for m, u in zip(self.motions, self.slid_off[ij]) if u]
 
     def attrs(self) -> dict[str, Any]:
         """Dataset attributes (numbers and strings only, so that they survive NetCDF)."""
@@ -208,10 +228,14 @@ class DesignChoice:
             out[f"{prefix}_mu_k"] = float(self.mu_k[ij[0]]) if ij else np.nan
             out[f"{prefix}_pedestal_mass"] = float(self.pedestal_mass[ij[1]]) if ij else np.nan
             out[f"{prefix}_clearance"] = float(self.clearance[ij].max()) if ij else np.nan
+            for q, (axis, values) in enumerate(self.extra_axes):
+                out[f"{prefix}_{axis}"] = float(values[ij[2 + q]]) if ij else np.nan
         ij = self.fewest_overturns
         out["fewest_overturns_count"] = int(self.falls[ij].sum()) if ij else -1
         out["fewest_overturns_motions"] = "\n".join(self.falling_motions(ij)) if ij else ""
         out["fewest_overturns_undetermined"] = "\n".join(self.undetermined_motions(ij)) if ij else ""
+        if self.slid_off is not None:
+            out["fewest_overturns_slid_off"] = "\n".join(self.slid_off_motions(ij)) if ij else ""
         return out
 
 
@@ -233,6 +257,11 @@ def choose_design(
     top_friction_limit: float | None = None,
     friction_scatter: float = DEFAULT_FRICTION_SCATTER,
     tan_alpha: float | None = None,
+    extra_axes: Sequence[tuple[str, Sequence[float]]] = (),
+    describe: Callable[[tuple[int, ...]], str] | None = None,
+    slid_off: Any = None,
+    slid_off_text: str = "a block slides to the edge of the one below",
+    subject: str = "pedestal floor friction",
 ) -> DesignChoice:
     """Rank the candidates of a friction design and write its verdict: the one place where the
     rules live (``rocking design``, :func:`friction_design` and the web page's sweep use it).
@@ -261,6 +290,17 @@ def choose_design(
         The relative scatter the runs covered, for the text.
     tan_alpha : float, optional
         The statue's tan α, for the hint when no candidate is safe.
+    extra_axes : sequence of (name, values), optional
+        Candidate axes after (μs, mass), e.g. ``("mu_s_top", …)`` and ``("pedestal_width", …)``
+        of the two-face design: every candidate array then has these dimensions after the
+        mass (``falls`` is (μs, mass, *extra, motion)); they break the last ties, smaller first.
+    describe : callable, optional
+        ``describe(index)`` → the text naming a candidate (default: its μs, μk and mass).
+    slid_off : bool array like ``falls``, optional
+        Stack runs: a block slid to the edge of the one below at some friction level (the engine
+        stops there). Not safe, like a fall, and named as ``slid_off_text``.
+    subject : str
+        What the first line recommends ("Recommended <subject>: …").
 
     Rules, in order (see ``docs/studies.md``):
 
@@ -281,7 +321,9 @@ def choose_design(
     masses = np.asarray(pedestal_mass, dtype=float)
     names = tuple(str(m) for m in motions)
     falls = np.asarray(falls, dtype=bool)
-    unsure = np.asarray(undetermined, dtype=bool) & ~falls
+    slid = np.zeros(falls.shape, bool) if slid_off is None else np.asarray(slid_off, dtype=bool) & ~falls
+    unsure = np.asarray(undetermined, dtype=bool) & ~falls & ~slid
+    extra = tuple((str(axis), np.asarray(values, dtype=float)) for axis, values in extra_axes)
     clearance = np.asarray(clearance, dtype=float)
     residual = np.asarray(residual, dtype=float)
     top = np.asarray(top_friction, dtype=float)
@@ -295,34 +337,37 @@ def choose_design(
     miss_residual = residual > residual_limit if residual_limit is not None else np.zeros(clear_max.shape, bool)
     miss_top = top > top_friction_limit if top_friction_limit is not None else np.zeros(clear_max.shape, bool)
     feasible = ~(miss_sliding | miss_residual | miss_top)
-    n_unsafe = falls.sum(axis=-1) + unsure.sum(axis=-1)
+    n_unsafe = falls.sum(axis=-1) + slid.sum(axis=-1) + unsure.sum(axis=-1)
     safe = n_unsafe == 0
     # the floor face's friction may turn out s higher: the concept is inverted as soon as the top
     # of its scatter band reaches the statue-pedestal face's friction
     inverted = (mus * (1.0 + s) >= top_friction_limit) if top_friction_limit is not None else np.zeros(mus.shape, bool)
-    cands = [(i, j) for i in range(mus.size) for j in range(masses.size)]
+    cands = list(np.ndindex(*falls.shape[:-1]))  # (μs, mass, *extra), μs outermost
 
     def best(pool: list[tuple[int, int]], key: Callable[[tuple[int, int]], tuple]) -> tuple[int, int] | None:
         return min(pool, key=key) if pool else None
 
-    def tail(ij: tuple[int, int]) -> tuple:
-        i, j = ij
-        return (bool(inverted[i]), float(score[ij]), float(clear_max[ij]), float(mus[i]), float(masses[j]))
+    def tail(ij: tuple[int, ...]) -> tuple:
+        i, j = ij[:2]
+        rest = tuple(float(values[k]) for (_, values), k in zip(extra, ij[2:]))
+        return (bool(inverted[i]), float(score[ij]), float(clear_max[ij]), float(mus[i]), float(masses[j]), *rest)
 
     safe_pool = [c for c in cands if safe[c]]
     good = best([c for c in safe_pool if feasible[c]], tail)
     nearest = best(safe_pool, lambda c: (bool(miss_residual[c] or miss_top[c]), float(clear_max[c]), *tail(c)))
     limited = [c for c in cands if feasible[c]]
     within = bool(limited)
-    by_falls = (lambda c: (int(n_unsafe[c]), int(falls[c].sum()), *tail(c)))
+    by_falls = (lambda c: (int(n_unsafe[c]), int(falls[c].sum() + slid[c].sum()), *tail(c)))
     fewest = best(limited, by_falls)
     if fewest is None and not safe_pool:  # nothing to build either way: the least bad candidate, named
         fewest = best(cands, lambda c: (int(n_unsafe[c]), int(miss_sliding[c] + miss_residual[c] + miss_top[c]),
                                         *by_falls(c)[1:]))
     recommended = good if good is not None else nearest
 
-    def name(ij: tuple[int, int]) -> str:
-        i, j = ij
+    def name(ij: tuple[int, ...]) -> str:
+        if describe is not None:
+            return describe(ij)
+        i, j = ij[:2]
         return f"μs = {mus[i]:.3g} (μk = {kin[i]:.3g}), pedestal mass {masses[j]:g} kg"
 
     def misses(ij: tuple[int, int]) -> list[str]:
@@ -339,11 +384,14 @@ def choose_design(
     def outcome(ij: tuple[int, int]) -> str:
         fell = [m for m, f in zip(names, falls[ij]) if f]
         moving = [m for m, u in zip(names, unsure[ij]) if u]
+        edge = [m for m, u in zip(names, slid[ij]) if u]
         parts = []
         if fell and n_mot == 1:
             parts.append(f"the statue falls under the motion ({fell[0]})")
         elif fell:
             parts.append(f"the statue falls under {len(fell)} of {n_mot} motions: {_names(fell)}")
+        if edge:
+            parts.append(f"{slid_off_text} (a fall risk) under {len(edge)} of {n_mot} motions: {_names(edge)}")
         if moving:
             parts.append(f"undetermined (still moving at the end, or the run stopped) under {len(moving)}: "
                          f"{_names(moving)}")
@@ -365,7 +413,7 @@ def choose_design(
 
     lines: list[str] = []
     if good is not None:
-        lines.append(f"Recommended pedestal floor friction: {name(good)}. The statue stands under {every} {band}, "
+        lines.append(f"Recommended {subject}: {name(good)}. The statue stands under {every} {band}, "
                      f"and the limits are met ({limit_text}).")
         lines.append(f"Free space the pedestal needs: {space(good)}.")
     else:
@@ -378,10 +426,13 @@ def choose_design(
                          f"needs the least free space: {space(nearest)}{beyond}"
                          + "".join(f"; {m}" for m in other) + ".")
         else:
-            lines.append(f"No candidate met every requirement: with every candidate the statue falls, or is left "
-                         f"undetermined, under some motion {band}. Nothing is recommended.")
+            how = "falls, or is left undetermined" if slid_off is None else \
+                "falls, slides to an edge, or is left undetermined"
+            lines.append(f"No candidate met every requirement: with every candidate the statue {how}, under some "
+                         f"motion {band}. Nothing is recommended.")
         # "fewest falls" unless the candidate's only failures are undetermined runs
-        least = "the fewest falls" if fewest is None or falls[fewest].any() else "no fall, but not proven safe"
+        least = ("the fewest falls" if fewest is None or falls[fewest].any() or slid[fewest].any()
+                 else "no fall, but not proven safe")
         if fewest is not None and within:
             lines.append(f"Within the limits, {least}: {name(fewest)}: {outcome(fewest)}.")
         elif fewest is not None:
@@ -389,7 +440,8 @@ def choose_design(
                          f"{name(fewest)}: {outcome(fewest)}; {'; '.join(misses(fewest))}.")
         else:
             lines.append(f"No candidate meets the limits ({limit_text}).")
-        if not safe_pool and tan_alpha is not None and float(mus.min()) * (1.0 + s) >= tan_alpha:
+        # (the floor face's argument: with a top face that may slip the statue has other ways out)
+        if not safe_pool and not extra and tan_alpha is not None and float(mus.min()) * (1.0 + s) >= tan_alpha:
             lines.append(f"Every μs swept reaches tan α = {tan_alpha:.3g} within the scatter. While μs·(1 + s) stays "
                          f"below tan α, the pedestal cannot pass on enough acceleration to start the statue rocking "
                          f"under horizontal shaking: sweep lower values (they need more free space).")
@@ -410,6 +462,7 @@ def choose_design(
         motions=names, safe=safe, feasible=feasible, inverted=inverted, recommended=recommended,
         meets_every_requirement=good is not None, nearest_safe=nearest, fewest_overturns=fewest,
         fewest_overturns_within_limits=fewest is not None and within, lines=tuple(lines),
+        slid_off=None if slid_off is None else slid, extra_axes=extra,
     )
 
 
@@ -433,12 +486,20 @@ def friction_design(
     fresh: bool = False,
     chunk_size: int | None = None,
     progress: Callable[[int, int], None] | None = None,
+    mu_s_top: Sequence[float] | None = None,
+    mu_k_top: float | None = None,
+    mu_k_top_ratio: float | None = None,
+    pedestal_width: Sequence[float] | None = None,
 ):
     """Sweep the pedestal's floor friction (and mass) over a set of motions and recommend one.
 
+    With a :class:`rocking.stack.Stack`, or with ``mu_s_top`` or ``pedestal_width``, both faces
+    of the pedestal are designed on the stack engine: see :func:`two_face_design`, which takes
+    the same arguments and returns the same Dataset with two more candidate dimensions.
+
     Parameters
     ----------
-    system : System
+    system : System or Stack
         The statue on its pedestal; the pedestal's friction and mass are the ones swept.
     motions : mapping of name to motion
         Already scaled (see :func:`rocking.analyses.fragility.load_record_set` and
@@ -469,6 +530,10 @@ def friction_design(
     options, workers, folder, fresh, chunk_size, progress
         As in :func:`rocking.analyses.store.run_stored`.
 
+    mu_s_top, mu_k_top, mu_k_top_ratio, pedestal_width : optional
+        The statue–pedestal face and the pedestal's width (m), swept on the stack engine
+        (:func:`two_face_design`).
+
     Returns
     -------
     xarray.Dataset
@@ -492,6 +557,15 @@ def friction_design(
     """
     from .batch import summaries_dataset
 
+    if isinstance(system, Stack) or mu_s_top is not None or pedestal_width is not None:
+        return two_face_design(
+            system, motions, mu_s=mu_s, mu_k=mu_k, mu_k_ratio=mu_k_ratio, pedestal_mass=pedestal_mass,
+            mu_s_top=mu_s_top, mu_k_top=mu_k_top, mu_k_top_ratio=mu_k_top_ratio, pedestal_width=pedestal_width,
+            sliding_limit=sliding_limit, residual_limit=residual_limit, top_friction_limit=top_friction_limit,
+            objective=objective, friction_scatter=friction_scatter, free_time=free_time, options=options,
+            workers=workers, folder=folder, fresh=fresh, chunk_size=chunk_size, progress=progress)
+    if mu_k_top is not None or mu_k_top_ratio is not None:
+        raise ValueError("mu_k_top and mu_k_top_ratio need mu_s_top (the statue–pedestal face's μs)")
     if system.pedestal is None:
         raise ValueError("friction_design needs a system with a pedestal")
     motions = dict(motions)
@@ -636,6 +710,340 @@ def friction_design(
     )
     return ds
 
+
+# ============================================================== both faces, on the stack engine
+def stack_of_system(system: System, *, pedestal_width: float | None = None) -> Stack:
+    """The statue on its pedestal as a two-block :class:`~rocking.stack.Stack`: the pedestal
+    (block 1, ``"pedestal"``) on the floor with its floor friction, the statue (``"statue"``) on
+    it with ``statue.friction`` (None: it never slips) and ``statue.restitution`` on that face.
+    The pedestal needs a width (or ``pedestal_width``, m) and a height: it may rock."""
+    p, st = system.pedestal, system.statue
+    if p is None:
+        raise ValueError("pedestal: missing (required): the design sweeps the pedestal's faces")
+    width = pedestal_width if pedestal_width is not None else p.width
+    for field, value in (("pedestal.width", width), ("pedestal.height", p.height)):
+        if value is None:
+            raise ValueError(f"{field}: needed by the stack engine, which designs both faces (the pedestal may "
+                             "rock and the statue slip on it)")
+    return Stack(blocks=(Block(name="pedestal", width=float(width), height=float(p.height), mass=float(p.mass)),
+                         Block(name="statue", width=st.width, height=st.height, mass=st.mass)),
+                 interfaces=(Interface(friction=p.friction),
+                             Interface(friction=st.friction, restitution=st.restitution)))
+
+
+def _kinetic(mus: np.ndarray, mu_k: float | None, ratio: float | None, base: Friction | None,
+             names: tuple[str, str]) -> np.ndarray:
+    """μk of each μs: fixed (capped at μs), a ratio of μs, or by default the ratio of ``base``."""
+    if mu_k is not None and ratio is not None:
+        raise ValueError(f"give {names[0]} or {names[1]}, not both")
+    if mu_k is not None:
+        if not mu_k >= 0:
+            raise ValueError(f"{names[0]} must be >= 0, got {mu_k!r}")
+        return np.minimum(float(mu_k), mus)
+    if ratio is None:
+        ratio = (base.kinetic / base.static) if base is not None and base.static > 0 and base.kinetic is not None else 1.0
+    if not 0 <= ratio <= 1:
+        raise ValueError(f"{names[1]} must lie in [0, 1], got {ratio!r}")
+    return float(ratio) * mus
+
+
+def _grid_values(values: Sequence[float], name: str, *, positive: bool) -> np.ndarray:
+    arr = np.asarray(values, dtype=float)
+    bad = arr.ndim != 1 or arr.size == 0 or np.any(~np.isfinite(arr)) or np.any(arr <= 0 if positive else arr < 0)
+    if bad:
+        raise ValueError(f"{name} must be {'positive' if positive else 'non-negative'} numbers, got {values!r}")
+    return arr
+
+
+#: The candidate dimensions of a two-face design, in order.
+TWO_FACE_CANDIDATE = ("mu_s", "pedestal_mass", "mu_s_top", "pedestal_width")
+
+
+def face_work(floor_slide: float, top_slide: float, statue_rotation: float, pedestal_rotation: float) -> str:
+    """Which face of the pedestal does the work, in one clause: the face that slides more isolates
+    (slides in m, rotations as peak θ/α of the statue and the pedestal's peak rotation in rad)."""
+    if floor_slide <= 0 and top_slide <= 0:
+        text = "neither face slides"
+    elif floor_slide >= top_slide:
+        text = (f"the floor face isolates: the pedestal slides {_mm(floor_slide)}, the statue slides "
+                f"{_mm(top_slide)} on the top face")
+    else:
+        text = (f"the top face isolates: the statue slides {_mm(top_slide)} on the pedestal's top face, the "
+                f"pedestal slides {_mm(floor_slide)} on the floor")
+    text += (f"; the statue rocks (peak θ/α = {statue_rotation:.2f})" if statue_rotation > 0
+             else "; the statue does not rock")
+    if pedestal_rotation > 0:
+        text += f"; the pedestal rocks (peak {math.degrees(pedestal_rotation):.2f}°)"
+    return text
+
+
+def two_face_design(
+    system: System | Stack,
+    motions: Mapping[str, Any],
+    *,
+    mu_s: Sequence[float],
+    mu_k: float | None = None,
+    mu_k_ratio: float | None = None,
+    pedestal_mass: Sequence[float] | None = None,
+    mu_s_top: Sequence[float] | None = None,
+    mu_k_top: float | None = None,
+    mu_k_top_ratio: float | None = None,
+    pedestal_width: Sequence[float] | None = None,
+    sliding_limit: float | None = None,
+    residual_limit: float | None = None,
+    top_friction_limit: float | None = None,
+    objective: str = "mean",
+    friction_scatter: float = DEFAULT_FRICTION_SCATTER,
+    free_time: float = 60.0,
+    options: Options = Options(),
+    workers: int | Any | None = None,
+    folder: str | os.PathLike[str] | None = None,
+    fresh: bool = False,
+    chunk_size: int | None = None,
+    progress: Callable[[int, int], None] | None = None,
+):
+    """Design both faces of the pedestal on the stack engine: the statue may slip on the pedestal,
+    the pedestal may slide, rock and lift.
+
+    The pedestal is the stack's block 1 (on the floor), the *floor face* interface 1 and the *top
+    face* interface 2 (under block 2, the statue); the statue's rotation statistics are the top
+    block's (the statue itself in a two-block stack). A :class:`System` is first turned into a
+    two-block stack (:func:`stack_of_system`). Candidates are every floor μs × pedestal mass × top
+    μs × pedestal width; the friction scatter s multiplies the μs and μk of both faces together
+    (levels 1 − s, 1, 1 + s: the faces' drifts in opposite directions are not run).
+
+    Safety (:func:`choose_design`): a candidate is safe if, under every motion at every level, no
+    block overturns, no block slides to the edge of the one below (status ``slid_past_edge``,
+    where the engine stops: a fall risk, named as such) and every run ends at rest. Then the
+    limits: ``sliding_limit`` and ``residual_limit`` on the pedestal's sliding on the floor (the
+    free space it needs), ``top_friction_limit`` (if given) on the friction the top face must
+    supply. The verdict's second line says which face does the work for the recommended
+    candidate (:func:`face_work`).
+
+    Parameters
+    ----------
+    mu_s_top : sequence of float, optional
+        μs of the top face; default the given top face's (a top face that never slips stays so:
+        ``mu_s_top`` is then ∞).
+    mu_k_top, mu_k_top_ratio : float, optional
+        Its μk, fixed (capped at μs) or as a ratio of μs; default the given top face's ratio.
+    pedestal_width : sequence of float, optional
+        m; default the pedestal's.
+    Others
+        As in :func:`friction_design`.
+
+    Returns
+    -------
+    xarray.Dataset
+        As :func:`friction_design`, with candidate dimensions ``mu_s``, ``pedestal_mass``,
+        ``mu_s_top`` and ``pedestal_width`` (and ``mu_k_top`` along ``mu_s_top``). Per run and
+        level also ``scatter_slid_off``, ``scatter_floor_sliding``, ``scatter_top_sliding`` (m,
+        the pedestal on the floor and the statue on the pedestal) and
+        ``scatter_pedestal_rotation`` (rad); per candidate and motion ``slid_off`` and
+        ``top_sliding`` (m, worst over the levels); per candidate ``slid_off_count``,
+        ``top_sliding_max`` and ``pedestal_rotation_max``. ``clearance`` is the floor face's
+        sliding. Attributes as in :func:`friction_design`, plus ``engine = "stack"``,
+        ``recommended_mu_s_top``, ``recommended_pedestal_width`` (and for ``nearest_safe_``,
+        ``fewest_overturns_``) and ``face_work`` (the clause of :func:`face_work`).
+    """
+    from .batch import specs_dataset
+
+    stack = system if isinstance(system, Stack) else stack_of_system(
+        system, pedestal_width=None if pedestal_width is None else float(np.asarray(pedestal_width, float).ravel()[0]))
+    if stack.n < 2:
+        raise ValueError("blocks: the two-face design needs a pedestal and a statue (at least two blocks)")
+    motions = dict(motions)
+    if not motions:
+        raise ValueError("friction_design needs at least one motion")
+    floor_face, top_face = stack.interfaces[0].friction, stack.interfaces[1].friction
+    if floor_face is None:
+        raise ValueError("interfaces[0].friction: the floor face must be able to slip (its friction is designed)")
+    mus = _grid_values(mu_s, "mu_s", positive=False)
+    kin = _kinetic(mus, mu_k, mu_k_ratio, floor_face, ("mu_k", "mu_k_ratio"))
+    if mu_s_top is None:
+        if mu_k_top is not None or mu_k_top_ratio is not None:
+            raise ValueError("mu_k_top and mu_k_top_ratio need mu_s_top (the statue–pedestal face's μs)")
+        mus_top = np.array([math.inf if top_face is None else top_face.static])
+        kin_top = np.array([math.inf if top_face is None else (top_face.kinetic if top_face.kinetic is not None
+                                                              else top_face.static)])
+    else:
+        mus_top = _grid_values(mu_s_top, "mu_s_top", positive=False)
+        kin_top = _kinetic(mus_top, mu_k_top, mu_k_top_ratio, top_face, ("mu_k_top", "mu_k_top_ratio"))
+    pedestal = stack.blocks[0]
+    masses = _grid_values(pedestal_mass if pedestal_mass is not None else [pedestal.mass], "pedestal_mass",
+                          positive=True)
+    widths = _grid_values(pedestal_width if pedestal_width is not None else [pedestal.width], "pedestal_width",
+                          positive=True)
+    if objective not in OBJECTIVES:
+        raise ValueError(f"objective must be one of {', '.join(OBJECTIVES)}, got {objective!r}")
+    scatter = _check_scatter(friction_scatter)
+    for name, v in (("sliding_limit", sliding_limit), ("residual_limit", residual_limit),
+                    ("top_friction_limit", top_friction_limit)):
+        if v is not None and not (math.isfinite(v) and v >= 0):
+            raise ValueError(f"{name} must be a number >= 0, got {v!r}")
+    if not free_time >= 0:
+        raise ValueError(f"free_time must be >= 0, got {free_time!r}")
+
+    factors = friction_factors(scatter)
+    nominal = factors.index(1.0)
+    shape_c = (mus.size, masses.size, mus_top.size, widths.size)
+    candidates = {}
+    for (i, j, k, w) in np.ndindex(*shape_c):
+        for q, f in enumerate(factors):
+            floor = Friction(static=float(mus[i]) * f, kinetic=float(kin[i]) * f)
+            top = None if math.isinf(mus_top[k]) else Friction(static=float(mus_top[k]) * f,
+                                                                kinetic=float(kin_top[k]) * f)
+            blocks = (dataclasses.replace(pedestal, mass=float(masses[j]), width=float(widths[w])),) + stack.blocks[1:]
+            faces = (dataclasses.replace(stack.interfaces[0], friction=floor),
+                     dataclasses.replace(stack.interfaces[1], friction=top)) + stack.interfaces[2:]
+            candidates[i, j, k, w, q] = Stack(blocks=blocks, interfaces=faces)
+    runs = [Run(candidates[key], name) for name in motions for key in np.ndindex(*shape_c, len(factors))]
+    options = dataclasses.replace(options, free_time_limit=float(free_time))
+    meta = {"mu_s": mus.tolist(), "mu_k": kin.tolist(), "pedestal_mass": masses.tolist(),
+            "mu_s_top": mus_top.tolist(), "mu_k_top": kin_top.tolist(), "pedestal_width": widths.tolist(),
+            "motions": list(motions), "friction_factor": list(factors), "engine": "stack"}
+    raw = run_stored(runs, motions, options=options, study="design", folder=folder, fresh=fresh, workers=workers,
+                     chunk_size=chunk_size, progress=progress, meta=meta)
+    statue = stack.blocks[-1]
+    alpha = math.atan2(statue.width, statue.height)
+    cand = TWO_FACE_CANDIDATE
+    run_dims = cand + ("motion", "friction_factor")
+    every = specs_dataset(raw, [r.system for r in runs], dims=("motion",) + cand + ("friction_factor",),
+                          shape=(len(motions),) + shape_c + (len(factors),))
+    every = every.transpose(*run_dims, ...)
+    ds = every.isel(friction_factor=nominal, drop=True)
+    ds = ds.assign_coords(mu_s=mus, pedestal_mass=masses, mu_s_top=mus_top, pedestal_width=widths,
+                          motion=list(motions), friction_factor=list(factors))
+    ds["mu_s"].attrs["long_name"] = "static friction of the pedestal on the floor"
+    ds["mu_s_top"].attrs["long_name"] = "static friction of the statue on the pedestal (inf: never slips)"
+    ds["pedestal_mass"].attrs["units"] = "kg"
+    ds["pedestal_width"].attrs["units"] = "m"
+    ds["friction_factor"].attrs["long_name"] = "friction of both faces (μs and μk) over its nominal value"
+
+    status = every.status.values.astype(str)
+    over = every.block_overturned.any("block").values | (status == "overturned")
+    slid = (status == "slid_past_edge") & ~over
+    unproven = (status != "completed") | every.still_moving.values
+    undetermined = ~over & ~slid & unproven
+    rot = np.where(over, math.pi / (2.0 * alpha), every.peak_rotation_over_alpha.values)
+    floor_slide = every.block_peak_sliding.isel(block=0).values
+    top_slide = every.block_peak_sliding.isel(block=1).values
+    ped_rot = every.block_peak_rotation.isel(block=0).values
+    resid = np.abs(every.block_residual_sliding.isel(block=0).values)
+    top_needed = every.interface_required_friction.isel(interface=1).values
+    top = np.where(over, np.nan, top_needed)
+    ds["scatter_overturned"] = (run_dims, over, {"long_name": "a block overturned"})
+    ds["scatter_slid_off"] = (run_dims, slid, {"long_name": "a block slid to the edge of the one below (stopped)"})
+    ds["scatter_undetermined"] = (run_dims, undetermined, {
+        "long_name": "nothing fell nor slid off, but the run did not end at rest (still moving, or it stopped)"})
+    ds["scatter_peak_rotation_over_alpha"] = (run_dims, rot)
+    ds["scatter_peak_sliding"] = (run_dims, floor_slide, {"units": "m"})
+    ds["scatter_floor_sliding"] = (run_dims, floor_slide, {"units": "m", "long_name": "pedestal on the floor"})
+    ds["scatter_top_sliding"] = (run_dims, top_slide, {"units": "m", "long_name": "statue on the pedestal"})
+    ds["scatter_pedestal_rotation"] = (run_dims, ped_rot, {"units": "rad"})
+    ds["scatter_residual_sliding"] = (run_dims, every.block_residual_sliding.isel(block=0).values, {"units": "m"})
+    ds["scatter_required_top_friction"] = (run_dims, top_needed)
+
+    falls = over.any(axis=-1)
+    slid_off = slid.any(axis=-1) & ~falls
+    unsure = undetermined.any(axis=-1) & ~falls & ~slid_off
+    rot_env = rot.max(axis=-1)
+    clearance = floor_slide.max(axis=-1)
+    top_env = top_slide.max(axis=-1)
+    n_c = len(cand)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # all-NaN: every run overturns the statue
+        top_max = np.nanmax(top.reshape(*top.shape[:n_c], -1), axis=-1)
+    resid_max = resid.reshape(*resid.shape[:n_c], -1).max(axis=-1)
+    ds["mu_k"] = (("mu_s",), kin)
+    ds["mu_k_top"] = (("mu_s_top",), kin_top)
+    ds["falls"] = (cand + ("motion",), falls, {"long_name": "a block overturns at some friction level"})
+    ds["slid_off"] = (cand + ("motion",), slid_off, {
+        "long_name": "a block slides to the edge of the one below at some friction level (a fall risk)"})
+    ds["undetermined"] = (cand + ("motion",), unsure, {
+        "long_name": "no fall, but some friction level leaves the stack moving at the end (or the run stopped)"})
+    ds["clearance"] = (cand + ("motion",), clearance, {
+        "units": "m", "long_name": "free space the pedestal needs: largest peak sliding on the floor over the levels"})
+    ds["top_sliding"] = (cand + ("motion",), top_env, {
+        "units": "m", "long_name": "largest peak sliding of the statue on the pedestal over the levels"})
+    ds["overturn_count"] = (cand, falls.sum(axis=-1).astype(np.int64))
+    ds["slid_off_count"] = (cand, slid_off.sum(axis=-1).astype(np.int64))
+    ds["undetermined_count"] = (cand, unsure.sum(axis=-1).astype(np.int64))
+    ds["overturn_rate"] = (cand, falls.mean(axis=-1))
+    ds["peak_rotation_ratio_mean"] = (cand, rot_env.mean(axis=-1))
+    ds["peak_rotation_ratio_median"] = (cand, np.median(rot_env, axis=-1))
+    ds["peak_rotation_ratio_max"] = (cand, rot_env.max(axis=-1))
+    ds["peak_sliding_max"] = (cand, clearance.max(axis=-1), {"units": "m"})
+    ds["top_sliding_max"] = (cand, top_env.max(axis=-1), {"units": "m"})
+    ds["pedestal_rotation_max"] = (cand, ped_rot.reshape(*shape_c, -1).max(axis=-1), {"units": "rad"})
+    ds["residual_sliding_max"] = (cand, resid_max, {"units": "m"})
+    ds["required_top_friction_max"] = (cand, top_max, {
+        "long_name": "largest friction the statue-pedestal face needed (runs without overturning)"})
+    score = _stat(rot_env, objective)
+
+    def describe(ij: tuple[int, ...]) -> str:
+        i, j, k, w = ij
+        top_text = ("top face never slips" if math.isinf(mus_top[k])
+                    else f"top μs = {mus_top[k]:.3g} (μk = {kin_top[k]:.3g})")
+        return (f"floor μs = {mus[i]:.3g} (μk = {kin[i]:.3g}), {top_text}, pedestal mass {masses[j]:g} kg, "
+                f"width {widths[w]:g} m")
+
+    below = stack.names[0]
+    choice = choose_design(
+        mu_s=mus, mu_k=kin, pedestal_mass=masses, motions=list(motions), falls=falls, undetermined=unsure,
+        clearance=clearance, residual=resid_max, top_friction=top_max, score=score, objective=objective,
+        sliding_limit=sliding_limit, residual_limit=residual_limit, top_friction_limit=top_friction_limit,
+        friction_scatter=scatter, tan_alpha=math.tan(alpha),
+        extra_axes=(("mu_s_top", mus_top), ("pedestal_width", widths)), describe=describe, slid_off=slid_off,
+        slid_off_text=(f"the {stack.names[1]} slides to the edge of the {below}" if stack.n == 2
+                       else "a block slides to the edge of the one below"),
+        subject="pedestal faces",
+    )
+    work = ""
+    shown = choice.recommended if choice.recommended is not None else choice.fewest_overturns
+    if shown is not None:
+        stands = ~over[shown]
+        work = face_work(float(floor_slide[shown].max()), float(top_slide[shown].max()),
+                         float(rot[shown][stands].max()) if stands.any() else 0.0, float(ped_rot[shown].max()))
+        which = "the recommended design" if choice.recommended is not None else "the candidate with the fewest falls"
+        levels = "motions and friction levels" if len(factors) > 1 else "motions"
+        lines = list(choice.lines)
+        lines.insert(1, f"Which face does the work, for {which} (largest over the {levels}): {work}.")
+        choice = dataclasses.replace(choice, lines=tuple(lines))
+    ds["safe"] = (cand, choice.safe, {
+        "long_name": "nothing falls or slides off, and every run ends at rest, under every motion at every level"})
+    ds["feasible"] = (cand, choice.feasible, {"long_name": "meets the sliding, residual and top-friction limits"})
+    ds["inverted"] = (("mu_s",), choice.inverted, {
+        "long_name": "floor-face μs·(1 + s) at or above top_friction_limit"})
+    ds["score"] = (cand, score, {"long_name": f"{objective} peak θ/α over the motions"})
+    rec = np.zeros(choice.safe.shape, dtype=bool)
+    if choice.recommended is not None:
+        rec[choice.recommended] = True
+    ds["recommended"] = (cand, rec)
+    ds.attrs.update(
+        study="friction design",
+        engine="stack",
+        alpha=alpha,
+        tan_alpha=math.tan(alpha),
+        objective=objective,
+        sliding_limit=np.nan if sliding_limit is None else float(sliding_limit),
+        residual_limit=np.nan if residual_limit is None else float(residual_limit),
+        top_friction_limit=np.nan if top_friction_limit is None else float(top_friction_limit),
+        friction_scatter=scatter,
+        free_time=float(free_time),
+        gravity=float(options.gravity),
+        statue_width=statue.width,
+        statue_height=statue.height,
+        statue_mass=statue.mass,
+        pedestal_height=pedestal.height,
+        blocks="\n".join(stack.names),
+        face_work=work,
+        **choice.attrs(),
+    )
+    return ds
+
+
+
 CANDIDATE_COLUMNS = (
     "mu_k", "safe", "overturn_count", "undetermined_count", "overturn_rate", "peak_rotation_ratio_mean",
     "peak_rotation_ratio_median", "peak_rotation_ratio_max", "peak_sliding_max", "residual_sliding_max",
@@ -643,13 +1051,23 @@ CANDIDATE_COLUMNS = (
 )
 
 
+#: The columns a two-face design (:func:`two_face_design`) adds.
+TWO_FACE_COLUMNS = ("mu_k_top", "slid_off_count", "top_sliding_max", "pedestal_rotation_max")
+
+
+def _candidate_dims(ds) -> tuple[str, ...]:
+    return tuple(d for d in TWO_FACE_CANDIDATE if d in ds.dims)
+
+
 def candidate_table(ds):
-    """One row per candidate (μs, pedestal mass) with the aggregated results (a pandas DataFrame).
+    """One row per candidate (μs, pedestal mass; and top μs, pedestal width for a two-face design)
+    with the aggregated results (a pandas DataFrame).
 
     The results are the worst over the friction levels μs·(1 − s), μs, μs·(1 + s);
     ``peak_sliding_max`` is the free space the pedestal needs (m)."""
-    table = ds[list(CANDIDATE_COLUMNS)].to_dataframe().reset_index()
-    return table[["mu_s", "pedestal_mass", *CANDIDATE_COLUMNS]]
+    columns = list(CANDIDATE_COLUMNS) + (list(TWO_FACE_COLUMNS) if "mu_s_top" in ds.dims else [])
+    table = ds[columns].to_dataframe().reset_index()
+    return table[[*_candidate_dims(ds), *columns]]
 
 
 def _fmt(x: Any, digits: int = 3) -> str:
@@ -684,8 +1102,11 @@ def design_report(ds, *, title: str = "Friction design", chart: str | None = "de
                          ("fewest_overturns", "the candidate with the fewest falls")):
         if math.isfinite(a.get(f"{prefix}_mu_s", np.nan)):
             shown = (a[f"{prefix}_mu_s"], a[f"{prefix}_pedestal_mass"], what)
+            at = {d: a[f"{prefix}_{d}"] for d in _candidate_dims(ds)}
             break
-    if shown is not None:
+    if shown is not None and "mu_s_top" in ds.dims:
+        lines += _faces_per_motion(ds, at, shown[2])
+    elif shown is not None:
         sel = ds.sel(mu_s=shown[0], pedestal_mass=shown[1])
         factors = [float(f) for f in ds.friction_factor.values]
         lines += [f"## Free space per motion, for {shown[2]} (μs = {shown[0]:.3g}, pedestal mass {shown[1]:g} kg)", "",
@@ -706,12 +1127,18 @@ def design_report(ds, *, title: str = "Friction design", chart: str | None = "de
             lines.append(f"| {motion} | {1e3 * float(sel.clearance.values[k]):.1f} | {state} |")
         lines.append("")
     lines += ["## Inputs and rules", ""]
-    lines.append(
-        f"Statue {a['statue_width']:g} m × {a['statue_height']:g} m, {a['statue_mass']:g} kg "
-        f"(α = {a['alpha']:.4f} rad, tan α = {a['tan_alpha']:.3f}); {n_mot} motion(s); "
-        f"{ds.sizes['mu_s']} × {ds.sizes['pedestal_mass']} candidate(s) (μs × pedestal mass)."
-    )
-    if s > 0:
+    if "mu_s_top" in ds.dims:
+        lines += _two_face_inputs(ds)
+    else:
+        lines.append(
+            f"Statue {a['statue_width']:g} m × {a['statue_height']:g} m, {a['statue_mass']:g} kg "
+            f"(α = {a['alpha']:.4f} rad, tan α = {a['tan_alpha']:.3f}); {n_mot} motion(s); "
+            f"{ds.sizes['mu_s']} × {ds.sizes['pedestal_mass']} candidate(s) (μs × pedestal mass)."
+        )
+    if s > 0 and "mu_s_top" in ds.dims:
+        lines.append(f"Friction scatter s = {s:g}: every candidate also runs with the μs and μk of both faces times "
+                     f"(1 − s) and (1 + s), and every result below is the worst of the three levels.")
+    elif s > 0:
         lines.append(f"Friction scatter s = {s:g}: every candidate also runs at μs·(1 − s) and μs·(1 + s), with μk "
                      "scaled alike, and every result below is the worst of the three levels.")
     else:
@@ -724,7 +1151,12 @@ def design_report(ds, *, title: str = "Friction design", chart: str | None = "de
     if math.isfinite(a["top_friction_limit"]):
         limits.append(f"required statue–pedestal friction ≤ {a['top_friction_limit']:.3g}")
     lines.append(f"Limits: {', '.join(limits) if limits else 'none'}.")
-    lines.append(f"Ranking: {ranking_rule(s, a['objective'])} (docs/studies.md).")
+    lines.append(f"Ranking: {ranking_rule(s, a['objective'], two_face='mu_s_top' in ds.dims)} (docs/studies.md).")
+    if "mu_s_top" in ds.dims:
+        lines += _two_face_candidates(ds, n_mot)
+        if chart:
+            lines += ["", f"![design chart]({chart})"]
+        return "\n".join(lines) + "\n"
     lines += ["", "## Candidates", "",
               "| μs | μk | pedestal mass (kg) | safe | falls | undetermined | peak θ/α mean | peak θ/α max | "
               "free space (mm) | residual (mm) | required top μ | meets limits |",
@@ -749,26 +1181,109 @@ def design_report(ds, *, title: str = "Friction design", chart: str | None = "de
     return "\n".join(lines) + "\n"
 
 
+def _top_text(mu: float) -> str:
+    return "never slips" if math.isinf(mu) else f"{mu:.3g}"
+
+
+def _faces_per_motion(ds, at: Mapping[str, float], what: str) -> list[str]:
+    """The report's table of a two-face design: per motion, the slide on each face, the statue's
+    rotation and its fate, for the candidate ``at`` (its coordinates)."""
+    sel = ds.sel(**at)
+    factors = [float(f) for f in ds.friction_factor.values]
+    levels = (f"over the friction levels {_levels_text(factors, [True] * len(factors))}" if len(factors) > 1
+              else "at the nominal friction")
+    below, above = (ds.attrs.get("blocks", "pedestal\nstatue").split("\n") + ["statue"])[:2]
+    out = [f"## Which face does the work, per motion, for {what} (floor μs = {at['mu_s']:.3g}, top μs = "
+           f"{_top_text(at['mu_s_top'])}, pedestal {at['pedestal_mass']:g} kg, {at['pedestal_width']:g} m wide)", "",
+           f"The largest peak sliding of the {below} on the floor (the free space it needs) and of the {above} on "
+           f"the {below}'s top face under each motion, {levels}; the statue's peak θ/α where it stands. Overall: "
+           f"**{1e3 * float(sel.clearance.max()):.1f} mm** on the floor, **{1e3 * float(sel.top_sliding.max()):.1f} mm** "
+           "on the top face.", "",
+           "| motion | floor face (mm) | top face (mm) | statue peak θ/α | pedestal rocks | statue |",
+           "|---|---|---|---|---|---|"]
+    for k, motion in enumerate(ds.motion.values):
+        over = sel.scatter_overturned.values[k]
+        slid = sel.scatter_slid_off.values[k]
+        unsure = sel.scatter_undetermined.values[k]
+        if over.any():
+            state = f"falls at {_levels_text(factors, over)}"
+        elif slid.any():
+            state = f"slides to the edge of the {below} at {_levels_text(factors, slid)} (a fall risk)"
+        elif unsure.any():
+            state = f"undetermined at {_levels_text(factors, unsure)} (still moving at the end, or the run stopped)"
+        else:
+            state = "stands"
+        rot = sel.scatter_peak_rotation_over_alpha.values[k]
+        rocks = "yes" if float(sel.scatter_pedestal_rotation.values[k].max()) > 0 else "no"
+        out.append(f"| {motion} | {1e3 * float(sel.clearance.values[k]):.1f} | "
+                   f"{1e3 * float(sel.top_sliding.values[k]):.1f} | "
+                   f"{_fmt(float(rot[~over].max())) if (~over).any() else '–'} | {rocks} | {state} |")
+    return out + [""]
+
+
+def _two_face_inputs(ds) -> list[str]:
+    a = ds.attrs
+    n = [ds.sizes[d] for d in TWO_FACE_CANDIDATE]
+    return [f"Stack engine (the statue may slip on the pedestal, the pedestal may slide, rock and lift): blocks "
+            f"{', '.join(str(a.get('blocks', '')).split(chr(10)))} from the floor up; statue {a['statue_width']:g} m × "
+            f"{a['statue_height']:g} m, {a['statue_mass']:g} kg (α = {a['alpha']:.4f} rad, tan α = "
+            f"{a['tan_alpha']:.3f}); pedestal {a['pedestal_height']:g} m high; {ds.sizes['motion']} motion(s); "
+            f"{' × '.join(str(k) for k in n)} candidate(s) (floor μs × pedestal mass × top μs × pedestal width)."]
+
+
+def _two_face_candidates(ds, n_mot: int) -> list[str]:
+    out = ["", "## Candidates", "",
+           "| floor μs | μk | top μs | top μk | pedestal mass (kg) | width (m) | safe | falls | slides off | "
+           "undetermined | peak θ/α mean | peak θ/α max | floor slide (mm) | top slide (mm) | residual (mm) | "
+           "required top μ | meets limits |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for _, row in candidate_table(ds).iterrows():
+        mark = " ⟵" if row["recommended"] else ""
+        out.append(
+            f"| {_fmt(row['mu_s'])}{mark} | {_fmt(row['mu_k'])} | {_top_text(row['mu_s_top'])} | "
+            f"{_top_text(row['mu_k_top'])} | {_fmt(row['pedestal_mass'])} | {_fmt(row['pedestal_width'])} | "
+            f"{_fmt(bool(row['safe']))} | {int(row['overturn_count'])}/{n_mot} | {int(row['slid_off_count'])}/{n_mot} | "
+            f"{int(row['undetermined_count'])}/{n_mot} | {_fmt(row['peak_rotation_ratio_mean'])} | "
+            f"{_fmt(row['peak_rotation_ratio_max'])} | {_fmt(1e3 * row['peak_sliding_max'], 4)} | "
+            f"{_fmt(1e3 * row['top_sliding_max'], 4)} | {_fmt(1e3 * row['residual_sliding_max'], 4)} | "
+            f"{_fmt(row['required_top_friction_max'])} | {_fmt(bool(row['feasible']))} |")
+    return out + ["", "⟵ recommended. Safe: under every motion at every friction level no block falls, none slides to "
+                  "the edge of the block below (where the stack engine stops: a fall risk), and every run ends at "
+                  "rest. An overturn counts as θ/α = π/(2α) in the statistics of the peak rotation. The floor slide "
+                  "is the free space the pedestal needs; the top slide is the statue's on the pedestal; the required "
+                  "top friction is the largest |F|/N the top face needed over the runs nothing fell."]
+
+
 def plot_design(ds, *, figsize_per_panel: tuple[float, float] = (6.4, 3.6)):
-    """The design chart (one panel per pedestal mass): peak θ/α, overturn rate and peak sliding
-    (the worst over the friction levels of the scatter) against μs, with tan α, the sliding limit,
-    the recommended candidate and its scatter band [μs·(1 − s), μs·(1 + s)] marked. Returns the
-    Figure."""
+    """The design chart (one panel per pedestal mass; for a two-face design per pedestal mass,
+    width and top-face μs): peak θ/α, overturn rate and peak sliding (the worst over the friction
+    levels of the scatter) against μs, with tan α, the sliding limit, the recommended candidate
+    and its scatter band [μs·(1 − s), μs·(1 + s)] marked; a two-face design also shows the statue's
+    sliding on the top face and counts slides to the edge with the falls. Returns the Figure."""
     from matplotlib.figure import Figure
 
     from ..viz.plots import plot_design_chart
 
-    masses = ds.pedestal_mass.values
-    fig = Figure(figsize=(figsize_per_panel[0], figsize_per_panel[1] * masses.size), layout="constrained")
-    axes = fig.subplots(masses.size, 1, squeeze=False)[:, 0]
+    two = "mu_s_top" in ds.dims
+    panels = [{"pedestal_mass": m} for m in ds.pedestal_mass.values]
+    if two:
+        panels = [{"pedestal_mass": m, "pedestal_width": w, "mu_s_top": t} for m in ds.pedestal_mass.values
+                  for w in ds.pedestal_width.values for t in ds.mu_s_top.values]
+    fig = Figure(figsize=(figsize_per_panel[0], figsize_per_panel[1] * len(panels)), layout="constrained")
+    axes = fig.subplots(len(panels), 1, squeeze=False)[:, 0]
     stat = ds.attrs.get("objective", "mean")
-    for ax, m1 in zip(axes, masses):
-        sub = ds.sel(pedestal_mass=m1)
+    for ax, at in zip(axes, panels):
+        sub = ds.sel(**at)
         rec = sub.recommended.values
+        rate = sub.overturn_rate.values
+        if two:
+            rate = (sub.falls | sub.slid_off).mean("motion").values
         plot_design_chart(sub.mu_s.values, sub[f"peak_rotation_ratio_{stat}"].values, sub.peak_sliding_max.values,
-                          sub.overturn_rate.values, ax=ax, tan_alpha=ds.attrs.get("tan_alpha"),
+                          rate, ax=ax, tan_alpha=ds.attrs.get("tan_alpha"),
                           recommended=float(sub.mu_s.values[rec][0]) if rec.any() else None,
-                          friction_scatter=float(ds.attrs.get("friction_scatter", 0.0)))
+                          friction_scatter=float(ds.attrs.get("friction_scatter", 0.0)),
+                          top_sliding=sub.top_sliding_max.values if two else None,
+                          rate_label="rate of falls and slides off the edge" if two else "overturn rate")
         limit = ds.attrs.get("sliding_limit", np.nan)
         if np.isfinite(limit):
             ax.right_ax.axhline(1e3 * limit, color="0.2", lw=0.9, ls="-.")
@@ -776,7 +1291,10 @@ def plot_design(ds, *, figsize_per_panel: tuple[float, float] = (6.4, 3.6)):
                                  textcoords="offset points", ha="right", fontsize=7, color="0.2")
             top = max(ax.right_ax.get_ylim()[1], 1.15e3 * limit)
             ax.right_ax.set_ylim(0.0, top)
-        ax.set_ylabel(f"{stat} peak |θ|/α, overturn rate (–)")
+        ax.set_ylabel(f"{stat} peak |θ|/α, {'fall' if two else 'overturn'} rate (–)")
         note = "" if ds.attrs.get("meets_every_requirement", 1) else " (no candidate met every requirement)"
-        ax.set_title(f"pedestal mass {m1:g} kg{note}", fontsize=9)
+        head = f"pedestal mass {at['pedestal_mass']:g} kg"
+        if two:
+            head += f", width {at['pedestal_width']:g} m, top face μs {_top_text(float(at['mu_s_top']))}"
+        ax.set_title(head + note, fontsize=9)
     return fig

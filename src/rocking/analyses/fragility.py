@@ -29,6 +29,7 @@ import numpy as np
 
 from ..models.bodies import System
 from ..simulation import Options
+from ..stack.model import Stack
 from .store import Run, run_stored
 
 __all__ = [
@@ -100,7 +101,7 @@ def _intensity(motion: Any, im: str) -> float:
 
 # ------------------------------------------------------------------------------------ IDA
 def ida(
-    systems: System | Mapping[str, System],
+    systems: System | Stack | Mapping[str, System | Stack],
     records: Mapping[str, Any] | Sequence[Any],
     levels: Sequence[float],
     *,
@@ -117,7 +118,9 @@ def ida(
 
     Parameters
     ----------
-    systems : System or mapping of label to System
+    systems : System, Stack, or mapping of label to either
+        A :class:`rocking.stack.Stack` runs on the stack engine (every interface may slip,
+        rock and lift); the statue is its top block.
     records : mapping of name to GroundMotion, or a sequence of GroundMotion
     levels : sequence of float
         Intensity levels: PGA (m/s²) or PGV (m/s), see ``im``.
@@ -137,10 +140,13 @@ def ida(
         ``exceed`` (θ/α reached 1, or fell) and ``fall`` (overturned), and ``scale_factor``.
         A run still moving at the free-motion cap (``still_moving``) is not shown to survive:
         it counts as a fall and an exceedance (conservative), and ``undetermined`` counts them.
+        For a stack, any block that overturns is a fall, and so is a block that slides to the
+        edge of the one below (status ``slid_past_edge``: the engine stops there), counted in
+        ``slid_off``.
     """
-    from .batch import summaries_dataset
+    from .batch import specs_dataset
 
-    if isinstance(systems, System):
+    if isinstance(systems, (System, Stack)):
         systems = {"statue": systems}
     systems = dict(systems)
     if not systems:
@@ -173,16 +179,19 @@ def ida(
     raw = run_stored(runs, records, options=options, study="fragility", folder=folder, fresh=fresh,
                      workers=workers, chunk_size=chunk_size, progress=progress, meta=meta)
     shape = (len(records), len(systems), lv.size)
-    alphas = np.array([run.system.statue.slenderness for run in runs])
-    flat = summaries_dataset(raw, alphas, dims=("record", "system", "level"), shape=shape)
-    ds = flat.transpose("system", "record", "level")
+    flat = specs_dataset(raw, [run.system for run in runs], dims=("record", "system", "level"), shape=shape)
+    ds = flat.transpose("system", "record", "level", ...)
     ds = ds.assign_coords(system=list(systems), record=list(records), level=lv)
     ds["level"].attrs.update(units=IM_UNITS[im], long_name=im.upper())
     ds["scale_factor"] = (("record", "level"), factors)
-    ds["fall"] = ds["overturned"] | ds["still_moving"]
+    slid_off = ds["status"] == "slid_past_edge"
+    # a stack stops when any of its blocks overturns (status "overturned"), the statue or not
+    ds["fall"] = ds["overturned"] | (ds["status"] == "overturned") | ds["still_moving"] | slid_off
     ds["exceed"] = ds["fall"] | (ds["peak_rotation_over_alpha"] >= 1.0)
     ds["undetermined"] = ds["still_moving"].sum(dim=("record", "level"))
     ds["undetermined"].attrs["long_name"] = "runs still moving at the free-motion cap (counted as falls)"
+    ds["slid_off"] = slid_off.sum(dim=("record", "level"))
+    ds["slid_off"].attrs["long_name"] = "runs where a block slid to the edge of the one below (counted as falls)"
     ds.attrs.update(study="ida", im=im, im_units=IM_UNITS[im], free_time=float(free_time),
                     gravity=float(options.gravity))
     return ds

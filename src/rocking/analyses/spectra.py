@@ -46,6 +46,7 @@ from ..excitation.pulses import CosinePulse, RickerPulse, SinePulse
 from ..models.bodies import System
 from ..simulation import Options
 from ..solver import compiled as C
+from ..stack.model import Stack
 from .store import ChunkStore, _version, chunk_ranges, fingerprint, run_chunks
 
 __all__ = [
@@ -100,7 +101,7 @@ def spectrum_motion(
 class SpectrumTask:
     """Everything one worker needs to find the boundary at a few frequencies of one motion."""
 
-    system: System
+    system: System | Stack
     shape: str
     frequency_ratios: tuple[float, ...]
     scan: tuple[float, ...]
@@ -119,11 +120,13 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
     cap."""
     from .batch import run_raw
 
-    if A <= 1.0:
+    if A <= 1.0 and not isinstance(task.system, Stack):
         # |a_g| never exceeds g·tan α: nothing can start rocking (alone, or on a pedestal that
         # passes on at most μk·g < |a_g|), so there is nothing to simulate
         return task.criterion not in ("overturn", "no_impact", "exceed")
     motion = spectrum_motion(task.shape, A, beta, g_tan_alpha=g_tan_alpha, p=p, phase=task.phase, cycles=task.cycles)
+    if isinstance(task.system, Stack):
+        return _stack_fails(task, motion, counter, options)
     raw = run_raw(task.system, motion, options)
     counter[0] += 1
     status = int(raw[C.S_STATUS])
@@ -143,6 +146,46 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
     return overturned
 
 
+_STACK_SOLVER_FAILURES = ("inconsistent", "step_failed", "max_events")
+
+
+def _stack_fails(task: SpectrumTask, motion: Any, counter: list[int], options: Options) -> bool:
+    """:func:`_fails` for a stack: any block overturning is an overturn, and a block sliding to the
+    edge of the one below (``slid_past_edge``, where the engine stops) a failure under every
+    criterion (a fall risk), counted in ``counter[3]``."""
+    from ..stack.simulate import simulate_stack
+    from .batch import stack_alpha
+
+    summary = simulate_stack(task.system, motion, options=options).summary()
+    counter[0] += 1
+    status = summary["status"]
+    if status in _STACK_SOLVER_FAILURES:
+        counter[1] += 1
+        return False
+    if status == "still_moving":
+        counter[2] += 1
+    if status == "slid_past_edge":
+        counter[3] += 1
+        return True
+    overturned = status == "overturned"
+    if task.criterion == "exceed":
+        return overturned or summary["peak_rotation"] >= stack_alpha(task.system)
+    if task.criterion == "no_impact":
+        return overturned and summary["impacts"] == 0
+    return overturned
+
+
+def statue_scales(system: System | Stack, gravity: float) -> tuple[float, float]:
+    """(α in rad, p in 1/s) of the statue: a System's, or a stack's top block (p = √(m g R / I_O),
+    I_O about a corner, from its inertia)."""
+    if not isinstance(system, Stack):
+        return system.statue.slenderness, system.statue.frequency_parameter(gravity)
+    top = system.blocks[-1]
+    radius = 0.5 * math.hypot(top.width, top.height)
+    corner_inertia = top.centroidal_inertia + top.mass * radius**2
+    return math.atan2(top.width, top.height), math.sqrt(top.mass * gravity * radius / corner_inertia)
+
+
 def _bisect(fails: Callable[[float], bool], lo: float, hi: float, f_lo: bool, rtol: float) -> tuple[float, float]:
     """Narrow [lo, hi] (outcomes differ at the ends) to hi − lo ≤ rtol·hi."""
     while hi - lo > rtol * hi:
@@ -156,10 +199,9 @@ def _bisect(fails: Callable[[float], bool], lo: float, hi: float, f_lo: bool, rt
 
 def _spectrum_chunk(task: SpectrumTask) -> dict[str, np.ndarray]:
     """Worker task: boundary, islands and scan at each frequency of ``task``."""
-    statue = task.system.statue
     g = task.options.gravity
-    p = statue.frequency_parameter(g)
-    g_tan_alpha = g * math.tan(statue.slenderness)
+    alpha, p = statue_scales(task.system, g)
+    g_tan_alpha = g * math.tan(alpha)
     options = dataclasses.replace(task.options, free_time_limit=task.free_time / p)
     nf, ns = len(task.frequency_ratios), len(task.scan)
     out = {
@@ -176,9 +218,10 @@ def _spectrum_chunk(task: SpectrumTask) -> dict[str, np.ndarray]:
         "runs": np.zeros(nf, dtype=np.int64),
         "failed_runs": np.zeros(nf, dtype=np.int64),
         "undetermined_runs": np.zeros(nf, dtype=np.int64),
+        "slid_off_runs": np.zeros(nf, dtype=np.int64),
     }
     for k, beta in enumerate(task.frequency_ratios):
-        counter = [0, 0, 0]
+        counter = [0, 0, 0, 0]
 
         def fails(A: float, beta: float = beta) -> bool:
             return _fails(task, A, beta, g_tan_alpha, p, counter, options)
@@ -210,7 +253,7 @@ def _spectrum_chunk(task: SpectrumTask) -> dict[str, np.ndarray]:
                 out["island_upper"][k, n_isl] = 0.5 * (end[0] + end[1]) if end is not None else np.inf
             n_isl += 1
         out["n_islands"][k] = n_isl
-        out["runs"][k], out["failed_runs"][k], out["undetermined_runs"][k] = counter
+        out["runs"][k], out["failed_runs"][k], out["undetermined_runs"][k], out["slid_off_runs"][k] = counter
     return out
 
 
@@ -244,8 +287,11 @@ def overturning_spectrum(
 
     Parameters
     ----------
-    system : System
-        The statue, alone or on a pedestal; α and p = √(3g/4R) are the statue's.
+    system : System or Stack
+        The statue, alone or on a pedestal; α and p = √(3g/4R) are the statue's. A
+        :class:`rocking.stack.Stack` runs on the stack engine, its top block being the statue;
+        any block overturning counts as an overturn, and a block sliding to the edge of the one
+        below (``slid_past_edge``) as a failure under every criterion, counted in ``slid_off_runs``.
     shapes : str or sequence of str
         ``"sine"``, ``"cosine"``, ``"ricker"``, ``"harmonic"`` (see the module docstring).
     frequency_ratios : sequence of float
@@ -289,8 +335,8 @@ def overturning_spectrum(
         boundary; ``inf`` = still safe at the top of the scan), ``n_islands``, every change of
         outcome found (``edge_lower``/``edge_upper`` brackets, ``edge_to_failure`` True where
         the block fails above it), ``scan_fails`` (the coarse scan), ``runs``,
-        ``failed_runs`` (solver failures, counted as safe) and ``undetermined_runs`` (still
-        moving at the free-motion cap, counted as safe).
+        ``failed_runs`` (solver failures, counted as safe), ``undetermined_runs`` (still
+        moving at the free-motion cap, counted as safe) and ``slid_off_runs`` (stacks only).
 
     Notes
     -----
@@ -360,14 +406,16 @@ def overturning_spectrum(
         "runs": np.zeros((ns, nb), dtype=np.int64),
         "failed_runs": np.zeros((ns, nb), dtype=np.int64),
         "undetermined_runs": np.zeros((ns, nb), dtype=np.int64),
+        "slid_off_runs": np.zeros((ns, nb), dtype=np.int64),
     }
     for (si, r), part in zip(index, parts):
         for key, arr in full.items():
-            arr[si, r.start : r.stop] = part[key]
+            if key in part:  # (a chunk saved before slid_off_runs existed has none: zeros)
+                arr[si, r.start : r.stop] = part[key]
     used = int(max(1, full["n_islands"].max()))
     n_edges = int(max(1, np.isfinite(full["edge_lower"]).sum(axis=-1).max()))
-    statue = system.statue
     g = options.gravity
+    alpha, p = statue_scales(system, g)
     mid = np.where(np.isnan(full["lower"]), full["upper"], 0.5 * (full["lower"] + full["upper"]))
     mid = np.where(full["truncated"], full["upper"], mid)
     dims = ("pulse", "frequency_ratio")
@@ -388,6 +436,8 @@ def overturning_spectrum(
             "failed_runs": (dims, full["failed_runs"]),
             "undetermined_runs": (dims, full["undetermined_runs"], {
                 "long_name": "runs still moving at the free-motion cap (counted as safe)"}),
+            "slid_off_runs": (dims, full["slid_off_runs"], {
+                "long_name": "stack runs where a block slid to the edge of the one below (counted as failing)"}),
         },
         coords={
             "pulse": np.array(shapes, dtype=str),
@@ -396,12 +446,13 @@ def overturning_spectrum(
         },
         attrs={
             "study": "overturning spectrum",
-            "alpha": statue.slenderness,
-            "tan_alpha": math.tan(statue.slenderness),
-            "p": statue.frequency_parameter(g),
+            "alpha": alpha,
+            "tan_alpha": math.tan(alpha),
+            "p": p,
             "gravity": g,
-            "restitution": statue.effective_restitution,
-            "pedestal": int(system.pedestal is not None),
+            "restitution": _restitution(system),
+            "pedestal": int(system.n > 1) if isinstance(system, Stack) else int(system.pedestal is not None),
+            "engine": "stack" if isinstance(system, Stack) else "system",
             "criterion": criterion,
             "rtol": float(rtol),
             "free_time": float(free_time),
@@ -410,6 +461,14 @@ def overturning_spectrum(
         },
     )
     return ds
+
+
+def _restitution(system: System | Stack) -> float:
+    """The statue's r (NaN for a stack interface left to the plastic rule, which gives Housner's value)."""
+    if isinstance(system, Stack):
+        r = system.interfaces[-1].restitution
+        return math.nan if r is None else float(r)
+    return system.statue.effective_restitution
 
 
 def island_bands(ds, pulse: str) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:

@@ -453,7 +453,8 @@ def default_chunk_size(n: int, *, chunks: int = 48, cap: int = 200) -> int:
 # ------------------------------------------------------------------- runs of the solver
 @dataclasses.dataclass(frozen=True)
 class Run:
-    """One simulation of a study: ``system`` under ``motions[motion]`` scaled by ``factor``.
+    """One simulation of a study: ``system`` (a System or a Stack) under ``motions[motion]``
+    scaled by ``factor``.
 
     ``factor`` multiplies the floor acceleration (a record's samples, or a pulse's or harmonic's
     amplitude); ``duration`` (s) defaults to the motion's duration.
@@ -497,21 +498,24 @@ def _portable(motion: Any) -> Any:
 
 
 def _run_runs(payload: tuple[Sequence[Run], Mapping[str, Any], Any]) -> np.ndarray:
-    """Worker task: the raw summary vectors of a chunk of runs."""
-    from ..solver.compiled import N_SUMMARY, S_STATUS, STATUS_INTERRUPTED
-    from .batch import run_raw
+    """Worker task: the raw summary vectors of a chunk of runs (NaN-padded to one width when the
+    chunk holds stacks, see :func:`rocking.analyses.batch.pad_rows`)."""
+    from ..solver.compiled import S_STATUS, STATUS_INTERRUPTED
+    from ..stack.model import Stack
+    from .batch import pad_rows, run_spec_raw
 
     runs, shipped, options = payload
     motions = {k: (m.restore() if isinstance(m, _PortableRecord) else m) for k, m in shipped.items()}
-    out = np.empty((len(runs), N_SUMMARY))
-    for k, run in enumerate(runs):
+    rows = []
+    for run in runs:
         motion = scale_motion(motions[run.motion], run.factor)
-        out[k] = run_raw(run.system, motion, options, run.duration)
-        if out[k, S_STATUS] == STATUS_INTERRUPTED:
+        row = run_spec_raw(run.system, motion, options, run.duration)
+        if not isinstance(run.system, Stack) and row[S_STATUS] == STATUS_INTERRUPTED:
             # a run cut short by a signal is not a result: never let it into a saved chunk (the
             # signal normally raises on its own; this holds even where it was ignored)
             raise KeyboardInterrupt("a run of the chunk was interrupted")
-    return out
+        rows.append(row)
+    return pad_rows(rows)
 
 
 def run_stored(
@@ -529,12 +533,19 @@ def run_stored(
 ) -> np.ndarray:
     """Raw summary vectors (one row per run) of ``runs``, chunked, and saved to ``folder``.
 
-    Each chunk carries only the motions its runs use (a record is sent once per chunk, not
-    once per run). With ``folder`` the study resumes where it stopped; see :class:`ChunkStore`.
+    A run's ``system`` is a :class:`~rocking.models.bodies.System` (the compiled solver) or a
+    :class:`~rocking.stack.Stack` (the stack engine); rows of stacks are NaN-padded to one width,
+    and :func:`rocking.analyses.batch.specs_dataset` turns them into summaries. Each chunk
+    carries only the motions its runs use (a record is sent once per chunk, not once per run).
+    With ``folder`` the study resumes where it stopped; see :class:`ChunkStore`.
     """
+    from .batch import pad_rows, spec_kind
+
     runs = list(runs)
     if not runs:
         raise ValueError("a study needs at least one run")
+    for i, run in enumerate(runs):
+        spec_kind(run.system, f"runs[{i}].system")
     size = int(chunk_size) if chunk_size is not None else default_chunk_size(len(runs))
     pieces = chunk_ranges(len(runs), size)
     payloads = []
@@ -549,4 +560,4 @@ def run_stored(
         store = ChunkStore(folder, study=study, fingerprint=fp, n_chunks=len(payloads), meta=meta, fresh=fresh)
     parts = run_chunks(_run_runs, payloads, store=store, workers=workers, sizes=[len(r) for r in pieces],
                        progress=progress)
-    return np.concatenate(parts, axis=0)
+    return pad_rows(parts)

@@ -156,6 +156,20 @@ MEANING: dict[str, tuple[str, str]] = {
     "DesignConfig.objective": ("", "statistic of the peak θ/α over the motions that is minimised"),
     "DesignConfig.friction_scatter": ("–", "relative scatter s: safe only if the statue survives at μs·(1 ± s)"),
     "DesignConfig.free_time": ("s", "longest free motion after each motion"),
+    "DesignConfig.mu_s_top": ("–", "candidate static friction of the statue–pedestal face (each ≥ 0); given: both "
+                                   "faces are designed on the stack engine"),
+    "DesignConfig.mu_k_top": ("–", "a fixed kinetic friction of that face (capped at each μs)"),
+    "DesignConfig.mu_k_top_ratio": ("–", "or its μk = ratio·μs; omitted: the given top face's ratio"),
+    "DesignConfig.pedestal_width": ("m", "pedestal widths to sweep (each > 0); given: the stack engine, as for "
+                                         "mu_s_top"),
+    "_StackStudy.blocks": ("", "the blocks from the floor up, as in stack files; the design's pedestal is the "
+                               "first, its statue the second"),
+    "_StackStudy.interfaces": ("", "the contacts from the floor up, as in stack files; the design's floor face is "
+                                   "the first, its top face the second"),
+    "_StackStudy.simulation": ("", "as in study files (not duration nor free_time_limit)"),
+    "DesignStackStudy.motions": ("", "as in design files"),
+    "DesignStackStudy.design": ("", "as in design files; mu_s sweeps the floor face, mu_s_top the top face, "
+                                    "pedestal_mass and pedestal_width the first block"),
     # [fragility]
     "FragilityConfig.records": ("", "the record set"),
     "FragilityConfig.pga_levels": ("m/s²", "PGA ladder"),
@@ -188,6 +202,10 @@ TABLES: tuple[tuple[str, type[BaseModel], str], ...] = (
      "place of `[statue]` and `[pedestal]`; `[motion]` and `[simulation]` are those of run files."),
     ("`rocking design`", studies.DesignStudy, "The pedestal's floor friction (and mass) over a set of motions. "
      "`[statue]`, `[pedestal]` and `[simulation]` are those of run files."),
+    ("Stack study files (`rocking design`, `fragility`, `spectrum`)", studies.DesignStackStudy,
+     "A study of a stack of blocks on the stack engine: `[[blocks]]` and `[[interfaces]]` of stack files in place of "
+     "`[statue]` and `[pedestal]`, with the study's own tables (shown here for `rocking design`; a fragility or "
+     "spectrum file takes `[fragility]` or `[spectrum]` instead of `[motions]` and `[design]`)."),
     ("`rocking fragility`", studies.FragilityStudy, "Fragility curves by incremental dynamic analysis, with the "
      "tables of run files."),
     ("`rocking spectrum`", studies.SpectrumStudy, "Overturning spectra of pulses and harmonic motion, with the "

@@ -25,8 +25,10 @@ import typer
 from pydantic import BaseModel, Field, PrivateAttr, ValidationError, field_validator, model_validator
 
 from ..io.config import (
+    BlockConfig,
     ConfigError,
     FrictionConfig,
+    InterfaceConfig,
     NonNegative,
     PedestalConfig,
     Positive,
@@ -39,7 +41,9 @@ from ..io.config import (
 )
 
 __all__ = [
+    "DesignStackStudy",
     "DesignStudy",
+    "FragilityStackStudy",
     "FragilityStudy",
     "SpectrumStudy",
     "design",
@@ -47,6 +51,7 @@ __all__ = [
     "load_study",
     "register",
     "spectrum",
+    "SpectrumStackStudy",
 ]
 
 
@@ -136,14 +141,19 @@ class DesignConfig(_Section):
     objective: Literal["mean", "median", "max"] = "mean"
     friction_scatter: Annotated[float, Field(ge=0, lt=1)] = 0.2  # relative: candidates also run at μs·(1 ± s)
     free_time: NonNegative = 60.0  # s: longest free motion after each record (runs end at rest)
+    # the top face and the width: any of them runs the study on the stack engine
+    mu_s_top: Grid | None = None
+    mu_k_top: NonNegative | None = None
+    mu_k_top_ratio: Annotated[float, Field(ge=0, le=1)] | None = None
+    pedestal_width: Grid | None = None  # m
 
-    @field_validator("mu_s")
+    @field_validator("mu_s", "mu_s_top")
     @classmethod
-    def _friction_values(cls, v: Grid) -> Grid:
+    def _friction_values(cls, v: Grid | None) -> Grid | None:
         # checked here, not by friction_design, so that the message names design.mu_s and the file
-        return _checked_grid(v, lambda x: x >= 0, ">= 0")
+        return None if v is None else _checked_grid(v, lambda x: x >= 0, ">= 0")
 
-    @field_validator("pedestal_mass")
+    @field_validator("pedestal_mass", "pedestal_width")
     @classmethod
     def _mass_values(cls, v: Grid | None) -> Grid | None:
         # > 0 as [pedestal] mass: a massless pedestal is the statue sliding on the floor
@@ -153,7 +163,16 @@ class DesignConfig(_Section):
     def _one_kinetic(self) -> DesignConfig:
         if self.mu_k is not None and self.mu_k_ratio is not None:
             raise ValueError("give mu_k or mu_k_ratio, not both")
+        if self.mu_k_top is not None and self.mu_k_top_ratio is not None:
+            raise ValueError("give mu_k_top or mu_k_top_ratio, not both")
+        if self.mu_s_top is None and (self.mu_k_top is not None or self.mu_k_top_ratio is not None):
+            raise ValueError("mu_k_top and mu_k_top_ratio go with mu_s_top (the statue–pedestal face's μs)")
         return self
+
+    @property
+    def two_faces(self) -> bool:
+        """A top-face or width axis: the study runs on the stack engine."""
+        return self.mu_s_top is not None or self.pedestal_width is not None
 
 
 class FragilityConfig(_Section):
@@ -220,7 +239,37 @@ class SpectrumStudy(_Study):
     spectrum: SpectrumConfig = SpectrumConfig()
 
 
+class _StackStudy(_Section):
+    blocks: Annotated[list[BlockConfig], Field(min_length=1)]
+    interfaces: list[InterfaceConfig]
+    simulation: SimulationConfig = SimulationConfig()
+
+    _source: str | None = PrivateAttr(default=None)
+
+
+class DesignStackStudy(_StackStudy):
+    """A ``rocking design`` file of a stack: [[blocks]] (the pedestal first, on the floor),
+    [[interfaces]] (the floor face first, then the top face), [motions], [design], [simulation]."""
+
+    motions: MotionSetConfig
+    design: DesignConfig
+
+
+class FragilityStackStudy(_StackStudy):
+    """A ``rocking fragility`` file of a stack: [[blocks]], [[interfaces]], [fragility], [simulation]."""
+
+    fragility: FragilityConfig
+
+
+class SpectrumStackStudy(_StackStudy):
+    """A ``rocking spectrum`` file of a stack: [[blocks]], [[interfaces]], [spectrum], [simulation]."""
+
+    spectrum: SpectrumConfig = SpectrumConfig()
+
+
 _STUDIES: dict[str, type[_Study]] = {"design": DesignStudy, "fragility": FragilityStudy, "spectrum": SpectrumStudy}
+_STACK_STUDIES: dict[str, type[_StackStudy]] = {"design": DesignStackStudy, "fragility": FragilityStackStudy,
+                                                "spectrum": SpectrumStackStudy}
 
 
 def _known_keys(model: type[BaseModel], loc: tuple[Any, ...]) -> list[str]:
@@ -277,6 +326,20 @@ def _problems(model: type[BaseModel], errors: list[Mapping[str, Any]]) -> list[t
     return out
 
 
+def _study_model(kind: str, data: Any, source: str | None) -> type[_Study] | type[_StackStudy]:
+    """The stack variant of a study for a file with [[blocks]] or [[interfaces]]; mixing them with
+    [statue] or [pedestal] is refused, naming the table."""
+    stack = [k for k in ("blocks", "interfaces") if isinstance(data, Mapping) and k in data]
+    if not stack:
+        return _STUDIES[kind]
+    single = [f"[{k}]" for k in ("statue", "pedestal") if k in data]
+    if single:
+        raise ConfigError([(stack[0], f"[[{stack[0]}]] describes a stack, which cannot also have "
+                            f"{' or '.join(single)}: give either [statue] (and [pedestal]) or [[blocks]] and "
+                            "[[interfaces]]")], source)
+    return _STACK_STUDIES[kind]
+
+
 def load_study(kind: str, config: str | os.PathLike[str] | Mapping[str, Any]) -> tuple[_Study, Path]:
     """Read and validate a study file.
 
@@ -288,20 +351,21 @@ def load_study(kind: str, config: str | os.PathLike[str] | Mapping[str, Any]) ->
     Returns
     -------
     (model, base_dir)
-        The validated model and the folder against which relative record paths resolve.
+        The validated model (a stack study for a file with ``[[blocks]]``) and the folder
+        against which relative record paths resolve.
 
     Raises
     ------
     ConfigError
         Naming the file and the dotted field.
     """
-    model = _STUDIES[kind]
     if isinstance(config, Mapping):
         source, data, base = None, config, Path.cwd()
     else:
         source = os.fspath(config)
         data = _read_toml(Path(config), source)
         base = Path(config).resolve().parent
+    model = _study_model(kind, data, source)
     try:
         study = model.model_validate(data)
     except ValidationError as exc:
@@ -315,6 +379,40 @@ def load_study(kind: str, config: str | os.PathLike[str] | Mapping[str, Any]) ->
 
 
 # ================================================================== from the models to specs
+def _stack_spec(study: _StackStudy, source: str | None):
+    """(stack, options) of a stack study, checked as ``rocking run`` checks a stack file."""
+    from ..io.config import StackConfig
+    from ..stack.model import Block, Interface, Stack
+
+    # the run file's checks (interfaces per block, names, overlaps, normal_force) in its words
+    cfg = StackConfig.model_construct(blocks=study.blocks, interfaces=study.interfaces, simulation=study.simulation)
+    cfg._source = source
+    cfg._check_stack()
+    blocks = []
+    for i, b in enumerate(study.blocks):
+        with _field(f"blocks[{i}]", source):
+            blocks.append(Block(width=b.width, height=b.height, mass=b.mass, inertia=b.inertia, offset=b.offset,
+                                name=b.name or ""))
+    interfaces = []
+    for i, f in enumerate(study.interfaces):
+        with _field(f"interfaces[{i}]", source):
+            interfaces.append(Interface(friction=f.friction.to_spec() if f.friction else None,
+                                        restitution=f.restitution))
+    with _field(None, source):
+        stack = Stack(blocks=tuple(blocks), interfaces=tuple(interfaces))
+    return stack, _options(study, source)
+
+
+def _options(study: Any, source: str | None):
+    from ..simulation import Options
+
+    sim = study.simulation
+    with _field("simulation", source):
+        return Options(gravity=sim.gravity, normal_force=sim.normal_force, impact=sim.impact, rtol=sim.rtol,
+                       atol=sim.atol, max_step=sim.max_step, rest_velocity=sim.rest_velocity, save_dt=sim.save_dt,
+                       max_events=sim.max_events)
+
+
 def _specs(study: _Study, source: str | None):
     from ..contact.friction import Friction
     from ..models.bodies import Pedestal, Statue, System
@@ -355,9 +453,27 @@ def design_inputs(study: DesignStudy, base: Path) -> dict[str, Any]:
     from ..analyses.design import motion_family
 
     src = getattr(study, "_source", None)
-    statue, pedestal, system, options = _specs(study, src)
-    if pedestal is None:
-        raise ConfigError([("pedestal", "missing (required): the design sweeps the pedestal's friction")], src)
+    d = study.design
+    if isinstance(study, _StackStudy):
+        system, options = _stack_spec(study, src)
+        if system.n < 2:
+            raise ConfigError([("blocks", "the design needs a pedestal (the first [[blocks]], on the floor) and what "
+                                "stands on it: at least two blocks")], src)
+        if system.interfaces[0].friction is None:
+            raise ConfigError([("interfaces[0].friction", "missing (required): the floor face's friction is what the "
+                                "design sweeps")], src)
+    else:
+        statue, pedestal, system, options = _specs(study, src)
+        if pedestal is None:
+            raise ConfigError([("pedestal", "missing (required): the design sweeps the pedestal's friction")], src)
+        if d.two_faces:
+            axis = "design.mu_s_top" if d.mu_s_top is not None else "design.pedestal_width"
+            if pedestal.height is None:
+                raise ConfigError([("pedestal.height", f"missing: {axis} runs the stack engine, where the pedestal "
+                                    "may rock, so it needs its height (m)")], src)
+            if pedestal.width is None and d.pedestal_width is None:
+                raise ConfigError([("pedestal.width", f"missing: {axis} runs the stack engine, where the pedestal "
+                                    "may rock, so it needs its width (m), or give design.pedestal_width")], src)
     m = study.motions
     if m.records is not None:
         recs = _records(m.records, base, src, "motions.records")
@@ -375,12 +491,16 @@ def design_inputs(study: DesignStudy, base: Path) -> dict[str, Any]:
     else:
         with _field("motions", src):
             motions = motion_family(m.family, _grid(m.amplitude), _grid(m.frequency), cycles=m.cycles, form=m.form)
-    d = study.design
-    return dict(system=system, motions=motions, mu_s=_grid(d.mu_s), mu_k=d.mu_k, mu_k_ratio=d.mu_k_ratio,
-                pedestal_mass=_grid(d.pedestal_mass) if d.pedestal_mass is not None else None,
-                sliding_limit=d.sliding_limit, residual_limit=d.residual_limit,
-                top_friction_limit=d.top_friction_limit, objective=d.objective,
-                friction_scatter=d.friction_scatter, free_time=d.free_time, options=options)
+    out = dict(system=system, motions=motions, mu_s=_grid(d.mu_s), mu_k=d.mu_k, mu_k_ratio=d.mu_k_ratio,
+               pedestal_mass=_grid(d.pedestal_mass) if d.pedestal_mass is not None else None,
+               sliding_limit=d.sliding_limit, residual_limit=d.residual_limit,
+               top_friction_limit=d.top_friction_limit, objective=d.objective,
+               friction_scatter=d.friction_scatter, free_time=d.free_time, options=options)
+    if d.two_faces or isinstance(study, _StackStudy):
+        out.update(mu_s_top=_grid(d.mu_s_top) if d.mu_s_top is not None else None, mu_k_top=d.mu_k_top,
+                   mu_k_top_ratio=d.mu_k_top_ratio,
+                   pedestal_width=_grid(d.pedestal_width) if d.pedestal_width is not None else None)
+    return out
 
 
 def fragility_inputs(study: FragilityStudy, base: Path) -> dict[str, Any]:
@@ -388,8 +508,17 @@ def fragility_inputs(study: FragilityStudy, base: Path) -> dict[str, Any]:
     from ..models.bodies import System
 
     src = getattr(study, "_source", None)
-    statue, pedestal, system, options = _specs(study, src)
     f = study.fragility
+    if isinstance(study, _StackStudy):
+        stack, options = _stack_spec(study, src)
+        systems = {}
+        if f.compare_alone:
+            systems["statue alone"] = _alone_block(stack, f.alone_friction)
+        systems["stack"] = stack
+        recs = _records(f.records, base, src, "fragility.records")
+        return dict(systems=systems, records=recs, levels=_levels(f, src), options=options, free_time=f.free_time,
+                    band=f.band, n_boot=f.bootstrap, confidence=f.confidence, seed=f.seed)
+    statue, pedestal, system, options = _specs(study, src)
     if pedestal is None:
         alone = statue
         if f.alone_friction is not None:
@@ -402,13 +531,28 @@ def fragility_inputs(study: FragilityStudy, base: Path) -> dict[str, Any]:
             systems["statue alone"] = System(statue=alone)
         systems["on pedestal"] = system
     recs = _records(f.records, base, src, "fragility.records")
+    return dict(systems=systems, records=recs, levels=_levels(f, src), options=options, free_time=f.free_time,
+                band=f.band, n_boot=f.bootstrap, confidence=f.confidence, seed=f.seed)
+
+
+def _levels(f: FragilityConfig, src: str | None) -> dict[str, list[float]]:
     levels = {}
     if f.pga_levels is not None:
         levels["pga"] = _positive_grid(f.pga_levels, "fragility.pga_levels", src)
     if f.pgv_levels is not None:
         levels["pgv"] = _positive_grid(f.pgv_levels, "fragility.pgv_levels", src)
-    return dict(systems=systems, records=recs, levels=levels, options=options, free_time=f.free_time,
-                band=f.band, n_boot=f.bootstrap, confidence=f.confidence, seed=f.seed)
+    return levels
+
+
+def _alone_block(stack: Any, friction: FrictionConfig | None) -> Any:
+    """The stack's top block standing alone on the floor (a one-block stack), with
+    ``alone_friction`` on the floor (omitted: it never slips) and its interface's restitution."""
+    import dataclasses
+
+    from ..stack.model import Stack
+
+    face = dataclasses.replace(stack.interfaces[-1], friction=friction.to_spec() if friction is not None else None)
+    return Stack(blocks=(dataclasses.replace(stack.blocks[-1], offset=0.0),), interfaces=(face,))
 
 
 def _replace_friction(statue: Any, friction: FrictionConfig | None) -> Any:
@@ -427,7 +571,10 @@ def _positive_grid(grid: Grid, field: str, src: str | None) -> list[float]:
 def spectrum_inputs(study: SpectrumStudy, base: Path) -> dict[str, Any]:
     """Keyword arguments of :func:`rocking.analyses.spectra.overturning_spectrum`."""
     src = getattr(study, "_source", None)
-    statue, pedestal, system, options = _specs(study, src)
+    if isinstance(study, _StackStudy):
+        system, options = _stack_spec(study, src)
+    else:
+        statue, pedestal, system, options = _specs(study, src)
     s = study.spectrum
     betas = _positive_grid(s.frequency_ratio, "spectrum.frequency_ratio", src)
     lo, hi = s.amplitude_ratio
@@ -588,6 +735,10 @@ def design(config: _CONFIG, out: _OUT = None, workers: _WORKERS = None, schedule
            fresh: _FRESH = False) -> None:
     """Friction design of the pedestal: sweep its floor friction (and mass), recommend one.
 
+    With design.mu_s_top or design.pedestal_width (or a [[blocks]] file) both faces are designed
+    on the stack engine: the statue may slip on the pedestal, the pedestal may rock, and the
+    report says which face does the work.
+
     Runs every candidate under every record or motion of the family, writes design_table.csv,
     design.nc, design_chart.png and design_report.md into OUT and prints the report. Rerun the
     same command to resume an interrupted study.
@@ -667,6 +818,10 @@ def fragility(config: _CONFIG, out: _OUT = None, workers: _WORKERS = None, sched
             if undetermined:
                 lines += [f"**{undetermined} run(s) were still moving {inputs['free_time']:g} s after their record "
                           "ended: undetermined, counted as falls.** Raise fragility.free_time to decide them.", ""]
+            slid = int(runs.slid_off.sum())
+            if slid:
+                lines += [f"**{slid} run(s): a block slid to the edge of the one below, where the stack engine stops: "
+                          "counted as falls (a fall risk).**", ""]
             for mode in ("exceed", "fall"):
                 ax = plot_fragility_curves(curves, mode, title=f"{config.stem}: {im.upper()}")
                 name = f"fragility_{im}_{mode}.png"
@@ -725,6 +880,10 @@ def spectrum(config: _CONFIG, out: _OUT = None, workers: _WORKERS = None, schedu
         console_lines.append(f"warning: {undetermined} of {int(ds.runs.sum())} runs were still moving at the free-motion "
                              f"cap ({a['free_time']:g}/p after the motion): undetermined, counted as safe; raise "
                              "spectrum.free_time")
+    slid = int(ds.slid_off_runs.sum())
+    if slid:
+        console_lines.append(f"note: in {slid} of {int(ds.runs.sum())} runs a block slid to the edge of the one below, "
+                             "where the stack engine stops: counted as failing (a fall risk)")
     typer.echo("\n".join(console_lines))
     typer.echo(f"wrote {out}/spectrum.nc, spectrum.csv and spectrum.png", err=True)
 

@@ -535,6 +535,8 @@ def plot_design_chart(
     tan_alpha: float | None = None,
     recommended: float | None = None,
     friction_scatter: float = 0.0,
+    top_sliding: Any = None,
+    rate_label: str = "overturn rate",
 ) -> Axes:
     """Design chart against the floor friction under the pedestal, on two y-axes.
 
@@ -558,6 +560,11 @@ def plot_design_chart(
     friction_scatter : float
         Relative scatter s of the friction: shade [μs·(1 − s), μs·(1 + s)] around the
         recommended μs, the range its safety was checked over.
+    top_sliding : array, optional
+        Peak sliding of the statue on the pedestal's top face, m (shown in mm, dotted, on the
+        right axis next to the pedestal's sliding on the floor).
+    rate_label : str
+        Legend text of the bars.
 
     Returns
     -------
@@ -576,7 +583,7 @@ def plot_design_chart(
         rate = np.asarray(overturn_rate, dtype=float)[order]
         width = 0.6 * float(np.min(np.diff(mu))) if mu.size > 1 else 0.05
         bars = ax.bar(mu, rate, width=width, color="#f6c9c4", edgecolor=COLORS["overturn"], lw=0.6,
-                      zorder=1, label="overturn rate")
+                      zorder=1, label=rate_label)
         handles.append(bars)
     shown = np.where(np.isfinite(rot), np.minimum(rot, top), top)
     (line,) = ax.plot(mu, shown, "-o", color=COLORS["theta"], ms=4, lw=1.3, zorder=3, label="peak |θ|/α")
@@ -602,13 +609,21 @@ def plot_design_chart(
     ax.set_xlabel(xlabel)
     ax.set_ylabel("peak |θ|/α, overturn rate (–)")
     right = ax.twinx()
+    floor_label = "peak sliding (mm)" if top_sliding is None else "pedestal on the floor (mm)"
     (sl,) = right.plot(mu, slide, "--s", color=COLORS["secondary"], ms=3.5, lw=1.2, zorder=3,
-                       label="peak sliding (mm)")
+                       label=floor_label)
     handles.append(sl)
+    shown_slides = slide
+    if top_sliding is not None:
+        top_mm = 1e3 * np.asarray(top_sliding, dtype=float)[order]
+        (tl,) = right.plot(mu, top_mm, ":D", color=COLORS["secondary"], ms=3.0, lw=1.4, zorder=3,
+                           mfc="white", label="statue on the top face (mm)")
+        handles.append(tl)
+        shown_slides = np.concatenate((slide, top_mm))
     right.set_ylabel("peak sliding (mm)", color=COLORS["secondary"])
     right.tick_params(axis="y", colors=COLORS["secondary"], labelsize=_TICK_SIZE)
     right.yaxis.label.set_size(_LABEL_SIZE)
-    finite = slide[np.isfinite(slide)]
+    finite = shown_slides[np.isfinite(shown_slides)]
     right.set_ylim(0.0, 1.1 * float(finite.max()) if finite.size and finite.max() > 0 else 1.0)
     _style(ax)
     ax.legend(handles=handles, loc="upper right", fontsize=_LEGEND_SIZE, framealpha=0.9)
