@@ -22,20 +22,24 @@ def register(app: typer.Typer) -> None:
             "report"
         ),
         max_samples: Annotated[int | None, MAX_SAMPLES_OPTION] = None,
+        clearance: Annotated[float | None, typer.Option(
+            help="Free space around the sliding pedestal (or statue), m: the report checks its peak sliding "
+                 "against it.")] = None,
     ) -> None:
         """Simulate CONFIG and write a self-contained HTML report and its PDF."""
         from ..io.config import load_config
-        from ..report import write_report
+        from ..report import check_clearance, write_report
         from ..runner import run_response
         from ..solver.warmup import ensure_compiled
 
+        clearance = check_clearance(clearance)  # before the run: a bad value must not cost a simulation
         cfg = with_max_samples(load_config(config), max_samples)
         _refuse_stack(cfg, config, "report")
         _check_out_folder(out)  # before simulating: a run must not end in FileExistsError
         preflight(cfg)  # the saved series within simulation.max_samples, before compiling
         ensure_compiled()
         result = run_response(cfg)
-        _write_atomically(out, lambda tmp: write_report(result, tmp))
+        _write_atomically(out, lambda tmp: write_report(result, tmp, clearance=clearance))
         typer.echo(f"wrote {out / 'report.html'} and {out / 'report.pdf'}")
 
     @app.command("animate")

@@ -5,9 +5,11 @@
     PosixPath('results/pedestal/report.html')
 
 The HTML page has its CSS inline and its figures embedded as base64 PNG (no external URL); the
-PDF is made with matplotlib's PdfPages (a text page, then the figures). Both say the same: the
-inputs, a one-sentence verdict, the key figures (the summary), the response and energy plots,
-the model's assumptions and the warnings.
+PDF is made with matplotlib's PdfPages on A4 pages, each with a footer (library version, date,
+input file and its short SHA-256, page number). Both say the same: a one-sentence verdict, the
+table of pass/fail checks, the key figures, the response and energy plots as numbered figures
+with the text that discusses them, the warnings, the inputs, the model's assumptions and the
+symbols.
 """
 
 from __future__ import annotations
@@ -17,9 +19,11 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from .content import ReportContent, build_content, verdict
+from .content import Check, ReportContent, build_content, check_clearance, checks, verdict, verdict_class
 
-__all__ = ["ReportContent", "build_content", "verdict", "write_report"]
+__all__ = [
+    "Check", "ReportContent", "build_content", "check_clearance", "checks", "verdict", "verdict_class", "write_report",
+]
 
 
 def _resolve(source: Any) -> tuple[Any, Any]:
@@ -52,6 +56,7 @@ def write_report(
     inputs: Mapping[str, Any] | None = None,
     pdf: bool = True,
     dpi: int = 110,
+    clearance: float | None = None,
 ) -> Path:
     """Write ``report.html`` (and ``report.pdf``) into ``out_dir``.
 
@@ -71,7 +76,10 @@ def write_report(
     pdf : bool
         Also write ``report.pdf``.
     dpi : int
-        Resolution of the embedded figures.
+        Resolution of the figures embedded in the HTML page.
+    clearance : float, optional
+        Free space around the sliding body (the pedestal, or the statue alone), m: the checks
+        compare its peak sliding with it.
 
     Returns
     -------
@@ -84,29 +92,27 @@ def write_report(
         For an invalid configuration (from :func:`rocking.runner.run_response`).
     TypeError
         For anything else that is not a Response or a configuration.
+    ValueError
+        For a clearance that is not a positive length.
     """
     from ..viz.plots import plot_energy, plot_response
     from .html import png_base64, write_html
     from .pdf import write_pdf
 
+    clearance = check_clearance(clearance)  # before simulating: bad input fails fast
     config, response = _resolve(config_or_response)
-    content = build_content(response, config, title=title, inputs=inputs)
+    content = build_content(response, config, title=title, inputs=inputs, clearance=clearance)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
 
     fig_response = plot_response(response)
     ax_energy = plot_energy(response)
     fig_energy = ax_energy.figure
-    figures = [
-        ("Rotation θ/α, sliding u and floor acceleration against time; the background shows the regime "
-         "(rest white, rock orange, slide blue, slide-rock purple), ticks mark impacts.", fig_response),
-        ("Mechanical energy relative to the floor, with the final energy ledger.", fig_energy),
-    ]
-    s = response.summary()
-    klass = "fails" if s["overturned"] else ("safe" if s["status"] == "completed" else "stopped")
-    html_path = write_html(
-        content, [(cap, png_base64(fig, dpi)) for cap, fig in figures], out / "report.html", verdict_class=klass
-    )
+    figures = [fig_response, fig_energy]  # in the order of content.figures
+    klass = verdict_class(response, content.checks)
+    # the HTML first: the PDF redraws the figures at its own size
+    html_path = write_html(content, [png_base64(fig, dpi) for fig in figures], out / "report.html",
+                           verdict_class=klass)
     if pdf:
-        write_pdf(content, [fig for _, fig in figures], out / "report.pdf")
+        write_pdf(content, figures, out / "report.pdf", verdict_class=klass)
     return html_path

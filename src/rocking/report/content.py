@@ -18,6 +18,58 @@ from ..models.regimes import Regime
 Rows = list[tuple[str, str]]
 
 
+#: Results of a check.
+PASS, FAIL, UNDETERMINED, NOT_CHECKED, NOT_APPLICABLE = "pass", "fail", "undetermined", "not checked", "n/a"
+
+#: Largest relative energy balance error |E − E₀ − W + D| / energy scale a run may have.
+ENERGY_BALANCE_LIMIT = 1e-6
+
+
+@dataclass(frozen=True)
+class Check:
+    """One row of the checks table: what was checked, the value found, the limit, the result
+    (:data:`PASS`, :data:`FAIL`, :data:`UNDETERMINED`, :data:`NOT_CHECKED`, :data:`NOT_APPLICABLE`).
+    ``warning`` says what a failure means when the model's own warnings do not say it."""
+
+    name: str
+    value: str
+    limit: str
+    result: str
+    warning: str | None = None
+
+
+@dataclass(frozen=True)
+class FigureText:
+    """What the report says about one figure: ``number`` (1, 2, … in reading order), the
+    heading of its section, the paragraph that discusses it and its caption (without the
+    "Figure n:" label)."""
+
+    number: int
+    heading: str
+    discussion: str
+    caption: str
+
+    @property
+    def label(self) -> str:
+        return f"Figure {self.number}: {self.caption}"
+
+
+@dataclass(frozen=True)
+class Provenance:
+    """Where a report comes from: library version, date (ISO), input name and the first 12 hex
+    digits of its SHA-256 (None when there is no input to hash)."""
+
+    version: str
+    date: str
+    input_name: str
+    input_hash: str | None
+
+    @property
+    def footer(self) -> str:
+        digest = f"SHA-256 {self.input_hash}" if self.input_hash else "no input file"
+        return f"rocking {self.version} · {self.date} · {self.input_name} · {digest}"
+
+
 @dataclass
 class ReportContent:
     """Everything a report shows, as plain strings (format-independent)."""
@@ -30,6 +82,10 @@ class ReportContent:
     warnings: list[str]
     events: list[tuple[str, str, str, str]] = field(default_factory=list)
     source: str | None = None
+    checks: list[Check] = field(default_factory=list)
+    figures: list[FigureText] = field(default_factory=list)
+    symbols: Rows = field(default_factory=list)
+    provenance: Provenance | None = None
 
 
 # --------------------------------------------------------------------------------- numbers
@@ -99,6 +155,17 @@ def verdict(response) -> str:
     if s["verdict"].startswith("undetermined"):  # the run ended before the floor motion did
         return f"{s['verdict'][0].upper()}{s['verdict'][1:]}; until then the statue did not overturn: {body}."
     return f"The statue does not overturn; {body}; everything is at rest at t = {s['end_time']:.2f} s."
+
+
+def verdict_class(response, report_checks: list[Check] | None = None) -> str:
+    """The colour of the verdict: "fails" (overturns), "stopped" (undetermined, or standing while
+    a check of ``report_checks`` fails) or "safe"."""
+    s = response.summary()
+    if s["overturned"]:
+        return "fails"
+    if s["verdict"].startswith("undetermined") or any(c.result == FAIL for c in report_checks or []):
+        return "stopped"
+    return "safe"
 
 
 # ----------------------------------------------------------------------------------- inputs
@@ -225,9 +292,8 @@ def key_figures(response) -> Rows:
     led = response.energy
     pedestal = getattr(response.system, "pedestal", None) is not None
     body = "pedestal" if pedestal else "statue"
+    # whether it overturned, the end of the run and the energy balance are in the checks table
     rows: Rows = [
-        ("overturned", "yes" if s["overturned"] else "no"),
-        ("overturn time", _time(s["overturn_time"])),
         ("first time |θ| ≥ α", _time(s["exceeded_alpha_time"])),
         ("peak rotation |θ|", f"{s['peak_rotation']:.4g} rad ({_deg(s['peak_rotation'])}) = "
                               f"{s['peak_rotation_over_alpha']:.3f} α"),
@@ -249,8 +315,6 @@ def key_figures(response) -> Rows:
         ("input work of the floor", _g(led["input_work"], 4, "J")),
         ("energy dissipated by friction", _g(led["friction_dissipation"], 4, "J")),
         ("energy dissipated by impacts", _g(led["impact_dissipation"], 4, "J")),
-        ("energy balance error (relative)", f"{s['energy_balance_error']:.2e}"),
-        ("status", f"{s['status']} (end at t = {s['end_time']:.3f} s)"),
     ]
     return rows
 
@@ -269,14 +333,16 @@ def assumptions(response) -> list[str]:
     ]
     if ped is not None:
         out.append(
-            "The pedestal only slides: it never rocks or lifts off (checked, see warnings). The statue does not "
-            "slide on the pedestal; the friction its base needs is reported and compared with the given value."
+            "The pedestal only slides: it never rocks or lifts off (checked: a warning says when it would). The "
+            "statue does not slide on the pedestal; the friction its base needs is compared with the top face's "
+            "μs in the checks."
         )
         fr = ped.friction
     else:
         fr = st.friction
         if fr is None:
-            out.append("The statue does not slide on the floor (infinite friction); the friction it needs is reported.")
+            out.append("The statue does not slide on the floor (infinite friction); the friction it needs is in "
+                       "the checks.")
     if fr is not None:
         out.append(
             f"Coulomb friction under the sliding body: sticking while |F| ≤ μs·N (μs = {fr.mu_s:g}), "
@@ -315,26 +381,229 @@ def assumptions(response) -> list[str]:
     return out
 
 
-def warnings(response) -> list[str]:
-    """The model's own warnings plus the friction the statue's base face must supply."""
-    s = response.summary()
-    out = list(response.warnings)
+def _overturn_check(s: Mapping[str, Any]) -> Check:
+    name, limit = "statue stays upright (no overturn)", "|θ| < π/2 (90°)"
+    peak = f"peak |θ| = {s['peak_rotation_over_alpha']:.2f} α ({_deg(s['peak_rotation'])})"
+    if s["overturned"]:
+        return Check(name, f"overturns at t = {s['overturn_time']:.2f} s", limit, FAIL)
+    if s["verdict"].startswith("undetermined"):
+        return Check(name, f"{peak} until t = {s['end_time']:.2f} s, when the run ended", limit, UNDETERMINED)
+    return Check(name, peak, limit, PASS)
+
+
+def _top_friction_check(response, s: Mapping[str, Any]) -> Check | None:
+    """The friction the statue's base needs, against the face it stands on when that face is
+    not simulated (the pedestal's top, or a floor without friction)."""
     need = s["required_top_friction"]
-    st = response.system.statue
-    if response.system.pedestal is not None:
-        text = (f"The statue/pedestal face must supply a friction coefficient of at least {need:.3f} "
-                "(largest |Fx|/Fy at the statue's base, impacts included) for the statue not to slide on the pedestal")
-        if st.friction is not None:
-            ok = need <= st.friction.mu_s
-            text += (f"; the given μs = {st.friction.mu_s:g} is " + ("enough." if ok else "NOT enough: the statue "
-                     "would slip on the pedestal, which this model does not simulate."))
-        else:
-            text += "; no friction was given for that face, so this was not checked."
-        out.append(text)
-    elif st.friction is None:
-        out.append(f"The floor must supply a friction coefficient of at least {need:.3f} under the statue "
-                   "(largest |Fx|/Fy at its base, impacts included); it was assumed never to slide.")
-    return out
+    system = response.system
+    if system.pedestal is None:
+        if system.statue.friction is not None:
+            return None  # the statue slides on the floor when it must: simulated, nothing to check
+        return Check("friction the statue's base needs on the floor, |Fx|/Fy", f"{need:.3f}",
+                     "none given (assumed never to slide)", NOT_CHECKED)
+    name = "friction the statue's base needs ≤ μs of the pedestal's top face"
+    top = system.top_friction
+    if top is None:
+        return Check(name, f"{need:.3f}", "no μs given for the top face", NOT_CHECKED)
+    if need <= top.mu_s:
+        return Check(name, f"{need:.3f}", f"μs = {top.mu_s:g}", PASS)
+    return Check(name, f"{need:.3f}", f"μs = {top.mu_s:g}", FAIL, warning=(
+        f"The statue's base needs a friction coefficient of {need:.3f}, more than the top face's "
+        f"μs = {top.mu_s:g}: the statue would slip on the pedestal, which this model does not simulate."))
+
+
+def _clearance_check(response, s: Mapping[str, Any], clearance: float | None) -> Check | None:
+    system = response.system
+    body = "pedestal" if system.pedestal is not None else "statue"
+    if clearance is None and system.floor_friction is None:
+        return None  # nothing slides and no free space was given: nothing to compare
+    name = f"peak sliding of the {body} ≤ the free space around it (clearance)"
+    peak = s["peak_sliding"]
+    if clearance is None:
+        return Check(name, _mm(peak), "no clearance given", NOT_CHECKED)
+    limit = _mm(clearance)
+    if peak > clearance:
+        return Check(name, _mm(peak), limit, FAIL, warning=(
+            f"The {body} slides up to {_mm(peak)}, beyond the {limit} of free space around it: it would "
+            "hit what surrounds it, which this model does not simulate."))
+    if s["verdict"].startswith("undetermined") and not s["overturned"]:
+        return Check(name, _mm(peak), limit, UNDETERMINED)  # it may slide further after the run's end
+    return Check(name, _mm(peak), limit, PASS)
+
+
+def _rest_check(s: Mapping[str, Any]) -> Check:
+    name, limit = "run ends at rest (a verdict, not undetermined)", "at rest after the floor motion"
+    if s["overturned"]:
+        return Check(name, f"ended by the overturn at t = {s['overturn_time']:.2f} s", limit, NOT_APPLICABLE)
+    # the model's warnings already say why a run is undetermined: no second warning here
+    return Check(name, s["verdict"], limit, FAIL if s["verdict"].startswith("undetermined") else PASS)
+
+
+def _impact_floor_check(response, s: Mapping[str, Any]) -> Check | None:
+    """Only the paper's impact rule needs a floor friction it does not apply (Coulomb impacts
+    bound the impulse by friction)."""
+    floor = response.system.floor_friction
+    if response.options.impact != "paper" or floor is None:
+        return None
+    need = s["impact_floor_friction_needed"]
+    return Check("floor friction the impacts need ≤ the floor's μs (paper's impact rule)", f"{need:.3f}",
+                 f"μs = {floor.mu_s:g}", PASS if need <= floor.mu_s else FAIL)
+
+
+def _energy_check(s: Mapping[str, Any]) -> Check:
+    err = s["energy_balance_error"]
+    name, limit = "energy balance error |E − E₀ − W + D| / energy scale", f"≤ {ENERGY_BALANCE_LIMIT:.0e}"
+    if err <= ENERGY_BALANCE_LIMIT:
+        return Check(name, f"{err:.1e}", limit, PASS)
+    return Check(name, f"{err:.1e}", limit, FAIL, warning=(
+        f"The energy ledger does not close (relative error {err:.1e} > {ENERGY_BALANCE_LIMIT:.0e}): tighten "
+        "simulation.rtol and simulation.atol and run again."))
+
+
+def checks(response, clearance: float | None = None) -> list[Check]:
+    """The pass/fail checks of one run, most important first.
+
+    Parameters
+    ----------
+    response : Response
+    clearance : float, optional
+        Free space around the sliding body, m: its peak sliding must stay within it.
+    """
+    s = response.summary()
+    found = [
+        _overturn_check(s),
+        _top_friction_check(response, s),
+        _clearance_check(response, s, clearance),
+        _rest_check(s),
+        _impact_floor_check(response, s),
+        _energy_check(s),
+    ]
+    return [c for c in found if c is not None]
+
+
+def warnings(response, report_checks: list[Check] | None = None) -> list[str]:
+    """Real warnings only: the model's own (instants where its assumptions fail, an undetermined
+    end) and what each failed check means. A passing check is not a warning."""
+    found = checks(response) if report_checks is None else report_checks
+    return list(response.warnings) + [c.warning for c in found if c.result == FAIL and c.warning]
+
+
+def check_clearance(clearance: float | None) -> float | None:
+    """``clearance`` as a float (m), or a one-line ValueError naming it."""
+    if clearance is None:
+        return None
+    try:
+        value = float(clearance)
+    except (TypeError, ValueError):
+        raise ValueError(f"clearance: must be a length in m, got {clearance!r}") from None
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f"clearance: must be a positive length in m, got {clearance!r}")
+    return value
+
+
+# ----------------------------------------------------------------------------------- figures
+def figure_texts(response) -> list[FigureText]:
+    """The two figures of a report, numbered, with the paragraph that discusses each."""
+    s = response.summary()
+    led = response.energy
+    body = "pedestal" if response.system.pedestal is not None else "statue"
+    if s["first_rocking_time"] is None:
+        rock = "The statue never rocks"
+    else:
+        rock = (f"The statue starts rocking at t = {s['first_rocking_time']:.2f} s and rocks up to "
+                f"{s['peak_rotation_over_alpha']:.2f} α ({_deg(s['peak_rotation'])}), with {s['impacts']} impacts")
+    if s["first_sliding_time"] is None:
+        slide = f"the {body} never slides"
+    else:
+        slide = (f"the {body} starts sliding at t = {s['first_sliding_time']:.2f} s, slides at most "
+                 f"{_mm(s['peak_sliding'])} and ends {_mm(s['residual_sliding'])} from where it started")
+    end = (f"The statue overturns at t = {s['overturn_time']:.2f} s (red line)." if s["overturned"]
+           else f"The run ends at t = {s['end_time']:.2f} s.")
+    response_fig = FigureText(
+        1,
+        "Response",
+        f"Figure 1 shows the motion against time. {rock}; {slide}. {end}",
+        f"Rotation θ/α of the statue, sliding u of the {body} relative to the floor and floor acceleration "
+        "a_g against time t. Background: the regime (rest white, rock orange, slide blue, slide-rock purple); "
+        "ticks: impacts; dashed lines: θ = ±α, the static stability limit.",
+    )
+    energy_fig = FigureText(
+        2,
+        "Energy",
+        f"Figure 2 follows the mechanical energy E. The floor puts in the work W = {_g(led['input_work'], 4, 'J')}; "
+        f"friction dissipates {_g(led['friction_dissipation'], 4, 'J')} and impacts "
+        f"{_g(led['impact_dissipation'], 4, 'J')}. The ledger E(t₀) + W − D (circle) closes on the curve to a "
+        f"relative error of {s['energy_balance_error']:.1e}, the energy balance check.",
+        "Mechanical energy E = T + V (kinetic plus potential) of the statue"
+        + (" and the pedestal" if response.system.pedestal is not None else "")
+        + " relative to the floor against time t, with the final energy ledger: input work W of the floor, "
+        "dissipation D by friction and impacts.",
+    )
+    return [response_fig, energy_fig]
+
+
+# ----------------------------------------------------------------------------------- symbols
+SYMBOLS: Rows = [
+    ("B, H", "width and height of the statue, m"),
+    ("m₁, m₂, M", "mass of the pedestal, of the statue, and M = m₁ + m₂ (M = m₂ alone), kg"),
+    ("α", "slenderness α = atan(B/H), rad: beyond |θ| = α gravity no longer rights the statue"),
+    ("R", "semi-diagonal R = ½√(B² + H²): base corner to centre of mass, m"),
+    ("p", "frequency parameter p = √(3g/4R), s⁻¹"),
+    ("g", "acceleration of gravity, m/s²"),
+    ("r", "coefficient of restitution: θ̇ after an impact over θ̇ before"),
+    ("μs, μk", "static and kinetic friction coefficients"),
+    ("θ, θ̇, θ̈", "rotation of the statue (rad, > 0 towards +x), its rate (rad/s) and acceleration (rad/s²)"),
+    ("u, u̇", "sliding of the pedestal (or of the statue alone) relative to the floor, m and m/s"),
+    ("a_g, a_v", "horizontal and vertical acceleration of the floor, m/s²"),
+    ("S", "the corner the statue rocks about: S = +1 for θ > 0, −1 for θ < 0"),
+    ("φ", "φ = α − S·θ = α − |θ|: angle between the corner-to-centre line and the vertical, rad"),
+    ("N, F", "normal and friction force of the floor on the body that slides, N"),
+    ("Fx, Fy", "horizontal and vertical force on the statue's base, N; |Fx|/Fy is the friction it needs"),
+    ("E, T, V", "mechanical energy E = T + V (kinetic plus potential) relative to the floor, J"),
+    ("W, D", "work put in by the floor; energy dissipated by friction and impacts, J"),
+    ("t, t₀", "time and the start of the run, s"),
+]
+
+
+# -------------------------------------------------------------------------------- provenance
+def _report_date() -> str:
+    """Today (UTC), or SOURCE_DATE_EPOCH's day for a reproducible build."""
+    import datetime as dt
+    import os
+
+    epoch = os.environ.get("SOURCE_DATE_EPOCH")
+    if epoch and epoch.strip().isdigit():
+        return dt.datetime.fromtimestamp(int(epoch), dt.timezone.utc).date().isoformat()
+    return dt.datetime.now(dt.timezone.utc).date().isoformat()
+
+
+def _sha256_short(data: bytes) -> str:
+    import hashlib
+
+    return hashlib.sha256(data).hexdigest()[:12]
+
+
+def provenance(config: Any = None) -> Provenance:
+    """Version, date and the input (file name and short SHA-256 of its bytes; a configuration
+    given as a dict is hashed as canonical JSON)."""
+    import json
+    from pathlib import Path
+
+    from .. import __version__
+
+    date = _report_date()
+    source = getattr(config, "source", None)
+    if source:
+        path = Path(source)
+        try:
+            digest = _sha256_short(path.read_bytes())
+        except OSError:
+            digest = None  # moved or deleted since it was read: say so rather than guess
+        return Provenance(__version__, date, path.name, digest)
+    if config is not None and hasattr(config, "model_dump"):
+        text = json.dumps(config.model_dump(mode="json"), sort_keys=True, ensure_ascii=False)
+        return Provenance(__version__, date, "configuration dict", _sha256_short(text.encode("utf-8")))
+    return Provenance(__version__, date, "a Response (no input file)", None)
 
 
 def event_rows(response, limit: int = 500) -> list[tuple[str, str, str, str]]:
@@ -360,17 +629,24 @@ def default_title(response, config: Any = None) -> str:
 
 
 def build_content(response, config: Any = None, *, title: str | None = None,
-                  inputs: Mapping[str, Any] | None = None) -> ReportContent:
+                  inputs: Mapping[str, Any] | None = None, clearance: float | None = None) -> ReportContent:
+    """Everything the report says about ``response``; ``clearance`` (m) is the free space
+    around the sliding body, checked against its peak sliding."""
     tables = describe_inputs(response, config)
     if inputs:
         tables["Configuration"] = inputs_from_mapping(inputs)
+    found = checks(response, check_clearance(clearance))
     return ReportContent(
         title=title or default_title(response, config),
         verdict=verdict(response),
         inputs=tables,
         key_figures=key_figures(response),
         assumptions=assumptions(response),
-        warnings=warnings(response),
+        warnings=warnings(response, found),
         events=event_rows(response),
         source=getattr(config, "source", None),
+        checks=found,
+        figures=figure_texts(response),
+        symbols=list(SYMBOLS),
+        provenance=provenance(config),
     )

@@ -330,7 +330,11 @@ def plot_energy(response, ax: Axes | None = None) -> Axes:
         Line2D([], [], **blank, label=f"impact dissipation = {led['impact_dissipation']:.4g} J"),
         Line2D([], [], **blank, label=f"balance error = {led['relative_balance_error']:.1e} (relative)"),
     ]
-    ax.legend(handles=handles, loc="best", fontsize=_LEGEND_SIZE, framealpha=0.9, handlelength=1.5)
+    # above the axes, as in plot_response: inside, "best" still lands on the curve or the marker
+    ax.legend(
+        handles=handles, loc="lower left", bbox_to_anchor=(0.0, 1.02), ncol=2, fontsize=_LEGEND_SIZE,
+        frameon=False, borderaxespad=0.0, handlelength=1.5,
+    )
     ax.set_xlim(float(t[0]) if t.size else 0.0, max(_t_end(response), 1e-9))
     ax.set_xlabel("t (s)")
     ax.set_ylabel("mechanical energy (J)")
