@@ -337,3 +337,114 @@ def test_a_run_over_the_servers_limits_shows_the_message(server, browser):
     assert not browser.find_elements(By.ID, "verdict")
     assert browser.find_element(By.ID, "duration").get_attribute("value") == "1e6"
     assert "600 s" in browser.find_element(By.ID, "duration").get_attribute("title")
+
+
+# ------------------------------------------------------------- a phone and a desktop (issue 13 §4)
+SIZES = [(1280, 900), (390, 844)]
+
+
+def set_size(driver, width: int, height: int) -> None:
+    """The page's viewport in CSS pixels (a desktop window, or a phone's screen)."""
+    driver.execute_cdp_cmd("Emulation.setDeviceMetricsOverride",
+                           {"width": width, "height": height, "deviceScaleFactor": 1, "mobile": False})
+
+
+@pytest.fixture
+def sized(browser):
+    yield lambda width, height: set_size(browser, width, height)
+    browser.execute_cdp_cmd("Emulation.clearDeviceMetricsOverride", {})
+
+
+def click(driver, element_id: str) -> None:
+    """Click as a user would, after scrolling the element to the middle of the screen (the Run
+    bar sticks to the bottom of the screen and would take a click meant for a field under it)."""
+    from selenium.webdriver.common.by import By
+
+    element = driver.find_element(By.ID, element_id)
+    driver.execute_script("arguments[0].scrollIntoView({block: 'center'});", element)
+    element.click()
+
+
+def widths(driver) -> tuple[int, int]:
+    return tuple(driver.execute_script("return [document.documentElement.scrollWidth, window.innerWidth];"))
+
+
+def in_view(driver, element_id: str) -> bool:
+    return driver.execute_script(
+        "var r = document.getElementById(arguments[0]).getBoundingClientRect();"
+        "return r.height > 0 && r.top >= -1 && r.bottom <= window.innerHeight + 1;", element_id)
+
+
+@pytest.mark.parametrize(("width", "height"), SIZES)
+def test_the_page_fits_the_screen_and_shows_the_verdict_after_a_run(server, browser, sized, width, height):
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.support.ui import WebDriverWait
+
+    sized(width, height)
+    browser.get(server + "/")
+    scroll_width, inner = widths(browser)
+    assert inner == width and scroll_width <= inner, (scroll_width, inner)
+    ARTIFACTS.mkdir(exist_ok=True)
+    full_page_screenshot(browser, ARTIFACTS / f"web-{width}-form.png")
+    choose_record(browser, RECORD)
+    fill(browser, INPUTS)
+    click(browser, "run")
+    # while it runs: the busy note, with its time limit, beside the Run button and on screen
+    WebDriverWait(browser, 20, poll_frequency=0.05).until(
+        lambda d: d.find_element(By.ID, "busy").is_displayed())
+    busy = browser.find_element(By.ID, "busy")
+    assert "at most 120 s" in busy.text
+    assert in_view(browser, "busy") and in_view(browser, "run")
+    gap = browser.execute_script(
+        "var a = document.getElementById('run').getBoundingClientRect(),"
+        " b = document.getElementById('busy').getBoundingClientRect(); return b.top - a.bottom;")
+    assert gap < 40
+    wait_for(browser, "#verdict")
+    WebDriverWait(browser, 60).until(lambda d: images_loaded(d))
+    assert in_view(browser, "verdict")
+    scroll_width, inner = widths(browser)
+    assert inner == width and scroll_width <= inner, (scroll_width, inner)
+    # the summary tables fit their card
+    assert browser.execute_script(
+        "var card = document.getElementById('result').getBoundingClientRect();"
+        "return ['summary', 'motion'].every(function (id) {"
+        "  var r = document.getElementById(id).getBoundingClientRect();"
+        "  return r.left >= card.left - 1 && r.right <= card.right + 1; });")
+    full_page_screenshot(browser, ARTIFACTS / f"web-{width}-result.png")
+
+
+def test_the_scale_previews_the_pga(server, browser):
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.support.ui import Select
+
+    browser.get(server + "/")
+    choose_record(browser, RECORD)  # PGA 0.874 g
+    fill(browser, {"scale_value": "0.5"})
+    preview = browser.find_element(By.ID, "pga-preview")
+    assert "PGA after scaling: 0.437 g = 4.29 m/s²" in preview.text
+    Select(browser.find_element(By.ID, "scale_kind")).select_by_value("pga_g")
+    fill(browser, {"scale_value": "0.3"})
+    assert "PGA after scaling: 0.300 g = 2.94 m/s² (the record × 0.343)" in preview.text
+
+
+def test_the_chosen_file_survives_an_error(server, browser, tmp_path):
+    """A file without units is refused with a pointer to the units selector; choosing the units
+    and running again uses the same file, without choosing it again."""
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.support.ui import Select
+
+    pulse = tmp_path / "pulse.txt"
+    rows = [f"{i / 100:.2f} {0.5 if 20 <= i < 70 else 0.0:.3f}" for i in range(301)]
+    pulse.write_text("time accel\n" + "\n".join(rows) + "\n", encoding="utf-8")
+    browser.get(server + "/")
+    fill(browser, {"scale_value": "1"})
+    browser.find_element(By.ID, "upload").send_keys(str(pulse))
+    click(browser, "run")
+    error = wait_for(browser, "#error").text
+    assert "pulse.txt: the file does not state its units; choose them in the form's “units of the file” selector" in error
+    assert browser.execute_script("return document.getElementById('upload').files.length;") == 1
+    Select(browser.find_element(By.ID, "units")).select_by_value("g")
+    click(browser, "run")
+    wait_for(browser, "#verdict")
+    motion = browser.find_element(By.ID, "motion").text
+    assert "pulse" in motion and "0.500 g" in motion

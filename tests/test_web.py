@@ -450,3 +450,163 @@ def test_server_listens_on_loopback_and_answers(tmp_path):
         server.shutdown()
         server.server_close()
         app.extensions["rocking"].shutdown()
+
+
+# ------------------------------------------------------------- what the page says (issue 13 §4)
+def test_record_dropdown_names_event_station_year_and_pga(client):
+    html = client.get("/").get_data(as_text=True)
+    option = re.search(rf'<option value="{RECORD}" data-pga-g="([^"]+)"[^>]*>([^<]+)</option>', html)
+    assert option, "the Rinaldi record is not offered"
+    assert float(option.group(1)) == pytest.approx(0.8740596, rel=1e-6)  # the file's PGA in g (README: 0.874)
+    assert unescape(option.group(2)) == "Northridge-01 1994 · Rinaldi Receiving Sta 228 · PGA 0.87 g"
+    # the station's name, not the network's code before it (README: "CDMG 24278, Castaic - Old Ridge Route")
+    assert "Northridge 1994 · Castaic - Old Ridge Route 090 · PGA 0.57 g" in unescape(html)
+    assert 'id="pga-preview"' in html
+
+
+def test_a_bundled_record_is_named_by_event_in_the_motion_table(client):
+    html = client.post("/run", data={**FORM, "duration": "3"}).get_data(as_text=True)
+    assert "Northridge-01 1994 · Rinaldi Receiving Sta 228" in text_of(html, "motion")
+    assert RECORD not in text_of(html, "motion")
+
+
+def test_binary_upload_is_not_a_text_record_file(client):
+    data = b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR" + bytes(range(256)) * 8
+    r = client.post("/run", data=upload(data, "photo.png"), content_type="multipart/form-data")
+    assert r.status_code == 400
+    assert "photo.png: not a text record file" in text_of(r.get_data(as_text=True), "error")
+
+
+def test_looks_binary(tmp_path):
+    from rocking.web.app import looks_binary
+
+    text = tmp_path / "a.txt"
+    text.write_bytes(short_record())
+    latin = tmp_path / "b.txt"
+    latin.write_bytes("Station Montréal\n0.0 0.1\n".encode("latin-1"))  # not UTF-8, still text
+    zipped = tmp_path / "c.zip"
+    zipped.write_bytes(b"PK\x03\x04" + b"\x14\x00" * 40)
+    assert not looks_binary(text) and not looks_binary(latin) and looks_binary(zipped)
+
+
+def test_missing_units_point_to_the_units_selector(client):
+    r = client.post("/run", data=upload(short_record(units_header=False), "pulse.txt"),
+                    content_type="multipart/form-data")
+    error = text_of(r.get_data(as_text=True), "error")
+    assert "choose them in the form's “units of the file” selector" in error
+    assert "units=" not in error and "pass" not in error  # no Python keyword syntax
+
+
+def test_residual_sliding_after_an_overturn_is_at_the_fall(client):
+    r = client.post("/run", data={**FORM, "scale_value": "1.0"})  # the statue alone falls at 3.20 s
+    html = r.get_data(as_text=True)
+    assert r.status_code == 200, text_of(html, "error")
+    assert values_of(html)["overturned"] is True
+    row = re.search(r'<td class="name">([^<]*)</td><td id="residual_sliding"[^>]*>([^<]*)</td>', html)
+    assert row.group(1) == "sliding at the fall"
+    assert "(at the fall, 3.203 s)" in unescape(row.group(2))
+
+
+def test_plots_have_a_phone_version_and_the_energy_zero_is_explained(client):
+    html = client.post("/run", data={**FORM, "duration": "3"}).get_data(as_text=True)
+    for name in ("response-narrow.png", "energy-narrow.png"):
+        src = re.search(rf'<source media="\(max-width: 640px\)" srcset="([^"]*{name})">', html).group(1)
+        pic = client.get(src)
+        assert pic.status_code == 200 and pic.mimetype == "image/png"
+    assert "Zero is the statue standing upright" in unescape(html)
+    assert "below zero only when the statue leans more than 2α" in unescape(html)
+
+
+def test_energy_axis_says_what_zero_is(tmp_path, monkeypatch):
+    """The energy plots the page shows carry the meaning of zero on their axis."""
+    from matplotlib.figure import Figure
+
+    from rocking.web import tasks
+
+    labels = []
+    save = Figure.savefig
+
+    def spy(fig, *args, **kw):
+        labels.extend(ax.get_ylabel() for ax in fig.axes)
+        return save(fig, *args, **kw)
+
+    monkeypatch.setattr(Figure, "savefig", spy)
+    tasks.run_task(config={**CONFIG, "simulation": {"duration": 2.0}}, out_dir=str(tmp_path),
+                   animation=FAST["ANIMATION"], dpi=40)
+    assert labels.count(tasks.ENERGY_AXIS_LABEL) == 2  # energy.png and energy-narrow.png
+    assert "0 = upright" in tasks.ENERGY_AXIS_LABEL
+
+
+# ------------------------------------------------------------------- the animation the page shows
+def test_the_page_animation_is_real_time_at_20_fps(tmp_path):
+    from PIL import Image
+
+    from rocking.web.app import DEFAULTS
+    from rocking.web.tasks import run_task
+
+    result = run_task(config={**CONFIG, "simulation": {"duration": 2.0}}, out_dir=str(tmp_path),
+                      animation=DEFAULTS["ANIMATION"], dpi=40)
+    assert result["animation_speed"] == 1.0
+    with Image.open(tmp_path / "animation.gif") as im:
+        assert im.info["duration"] == 50  # ms per frame: 20 fps
+        assert im.n_frames == 40  # 2 s of motion in 2 s of animation
+
+
+def test_a_fallen_statue_rests_on_its_pedestal_or_the_floor():
+    from rocking.viz.animation import resting_outline
+
+    b, h = 0.15, 0.6  # a 0.3 × 1.2 m statue
+    # on a 0.6 × 0.4 m pedestal centred at x = 1: its centre of mass is beyond the edge, so it
+    # tips over the edge (x = 1.3, y = 0.4) until its far end touches the floor
+    pts = resting_outline(1.0, 0.4, 0.6, b, h, +1.0)
+    assert pts[:, 1].min() == pytest.approx(0.0, abs=1e-12)  # touches the floor, no lower
+    bottom = pts[1] - pts[2]  # the face it lies on, from the far end to the pivot side
+    cross = (1.3 - pts[2, 0]) * bottom[1] - (0.4 - pts[2, 1]) * bottom[0]
+    assert cross == pytest.approx(0.0, abs=1e-12)  # that face leans on the pedestal's edge
+    assert pts[:, 0].min() > 1.0  # fell towards +x
+    # on a pedestal wider than the statue is tall: lies flat on its top
+    flat = resting_outline(0.0, 0.4, 3.0, b, h, -1.0)
+    assert flat[:, 1].min() == pytest.approx(0.4) and flat[:, 0].min() >= -1.5 - 1e-12
+    # without a pedestal: flat on the floor
+    assert resting_outline(0.0, 0.0, 0.0, b, h, 1.0)[:, 1].min() == pytest.approx(0.0, abs=1e-12)
+
+
+def test_the_floor_ruler_is_labelled_in_metres_and_moves_with_the_floor():
+    from matplotlib.figure import Figure
+
+    from rocking.viz.animation import floor_ruler
+
+    fig = Figure()
+    ax = fig.add_subplot()
+    ax.set_xlim(-1.5, 1.5)
+    move = floor_ruler(ax, -1.5, 1.5, 0.1)
+    shown = {t.get_text(): t.get_position()[0] for t in ax.texts if t.get_visible()}
+    assert {"-1", "0", "1", "m"} <= set(shown) and shown["0"] == 0.0
+    move(0.25)
+    assert {t.get_text(): t.get_position()[0] for t in ax.texts}["0"] == 0.25
+
+
+def test_sweep_report_has_the_chart_and_table_and_no_server_details(tmp_path):
+    """The downloadable report: the sweep's chart and a row per μs, and nothing of the server (the
+    uploaded file's temporary path) or of the code (class names, configuration keys)."""
+    import shutil
+
+    from rocking.web.tasks import sweep_task
+
+    upload_dir = tmp_path / "work" / "upload"
+    upload_dir.mkdir(parents=True)
+    shutil.copy(bundled_records()[RECORD], upload_dir / "my_record.AT2")
+    config = {**CONFIG, "motion": {"kind": "record", "path": str(upload_dir / "my_record.AT2"), "scale": 0.4},
+              "pedestal": {"mass": 50.0, "friction": {"static": 0.3, "kinetic": 0.22}},
+              "simulation": {"duration": 4.0}}
+    sweep_task(config=config, frictions=[0.1, 0.4], out_dir=str(tmp_path / "out"), dpi=40)
+    page = (tmp_path / "out" / "report.html").read_text(encoding="utf-8")
+    assert page.count("data:image/png;base64,") == 3  # response, energy and the sweep chart
+    text = " ".join(unescape(re.sub(r"<[^>]+>", " ", re.sub(r"data:image/png;base64,[^\"']+", "", page))).split())
+    assert "Figure 3 : Peak rotation of the statue" in text.replace("Figure 3:", "Figure 3 :")
+    assert "μs = 0.1" in text and "μs = 0.4" in text and "Every value of μs swept" in text
+    for leak in (str(tmp_path), "/upload/", "GroundMotion", "simulation.duration", "friction design sweep.",
+                 "static_friction"):
+        assert leak not in text, leak
+    assert "my_record" in text  # the record is still named
+    assert (tmp_path / "out" / "report.pdf").stat().st_size > 10_000

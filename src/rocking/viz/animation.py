@@ -118,6 +118,83 @@ def _statue_outline(xc: float, yb: float, b: float, h: float, theta: float) -> n
     return pts + np.array([xc, yb])
 
 
+def resting_outline(x_ped: float, ph: float, pw: float, b: float, h: float, sign: float) -> np.ndarray:
+    """Corners of a statue that has overturned towards ``sign`` (±1), drawn where it comes to rest:
+    lying on the pedestal's top if its centre of mass is over the pedestal, else tipped over the
+    pedestal's edge until its far end touches the floor (on the floor itself without a pedestal,
+    ``ph = 0``). The model stops at the overturn; this is a drawing, not a simulation. m."""
+    lying = _statue_outline(x_ped, ph, b, h, sign * 0.5 * math.pi)
+    edge = 0.5 * pw
+    if ph <= 0.0 or h <= edge - b:  # on the floor, or its centre of mass over the pedestal's top
+        return lying
+    reach = b + 2.0 * h - edge  # from the pedestal's edge to the far end
+    if reach <= ph:  # shorter than the drop: it falls beside the pedestal and lies on the floor
+        return lying + np.array([sign * (edge - b), -ph])
+    tilt = math.asin(ph / reach)
+    c, s = math.cos(tilt), math.sin(tilt)
+    pivot = np.array([x_ped + sign * edge, ph])
+    rel = lying - pivot
+    turned = np.column_stack((c * rel[:, 0] + sign * s * rel[:, 1], -sign * s * rel[:, 0] + c * rel[:, 1]))
+    return turned + pivot
+
+
+def _sliding_trace(fig, response):
+    """A small plot at the top left of the frame: the sliding u (mm) up to the frame's time, so
+    that a few millimetres, invisible at the statue's scale, show. Returns ``show(t)``."""
+    t = np.asarray(response.t, dtype=float)
+    u_mm = 1e3 * np.asarray(response.u, dtype=float)
+    lim = max(1.0, 1.15 * float(np.max(np.abs(u_mm)))) if u_mm.size else 1.0
+    ax = fig.add_axes((0.09, 0.60, 0.30, 0.19))
+    ax.set_xlim(float(t[0]), max(float(t[-1]), float(t[0]) + 1e-9))
+    ax.set_ylim(-lim, lim)
+    ax.axhline(0.0, color="0.7", lw=0.6)
+    ax.tick_params(labelsize=10, length=2, pad=1)
+    ax.set_xticks([])
+    ax.locator_params(axis="y", nbins=3)
+    ax.patch.set_alpha(0.85)
+    who = "pedestal" if getattr(response.system, "pedestal", None) is not None else "statue"
+    ax.set_title(f"{who} sliding u (mm)", fontsize=11, loc="left", pad=2)
+    (line,) = ax.plot([], [], color=COLORS["sliding"], lw=1.3)
+
+    def show(time: float) -> None:
+        n = int(np.searchsorted(t, time, side="right"))
+        line.set_data(t[:n], u_mm[:n])
+
+    return show
+
+
+def floor_ruler(ax, lo: float, hi: float, ground: float, *, fontsize: float = 9):
+    """A ruler on the floor strip: labelled ticks in metres (1, 2 or 5 × 10^k apart, about six
+    across the view) and unlabelled ones between. Returns ``move(shift)``, which redraws it
+    shifted by ``shift`` (m; the floor's displacement), so the ruler moves with the floor."""
+    span = hi - lo
+    rough = span / 6
+    base = 10 ** math.floor(math.log10(max(rough, 1e-9)))
+    step = next(m * base for m in (1.0, 2.0, 5.0, 10.0) if m * base >= rough)
+    minor = step / 5
+    (major_ticks,) = ax.plot([], [], color="0.3", lw=1.0, zorder=2)
+    (minor_ticks,) = ax.plot([], [], color="0.5", lw=0.6, zorder=2)
+    first = math.floor((lo - span) / step) * step
+    values = np.arange(first, hi + span, step)
+    labels = [ax.text(0.0, -0.66 * ground, f"{v:g}", fontsize=fontsize, ha="center", va="center", color="0.25",
+                      zorder=2, clip_on=True) for v in values]
+    ax.text(hi - 0.01 * span, -0.66 * ground, "m", fontsize=fontsize, ha="right", va="center", color="0.25",
+            zorder=3, bbox={"boxstyle": "square,pad=0.15", "facecolor": "#e4e0d8", "edgecolor": "none"})
+    minors = np.arange(first, hi + span, minor)
+
+    def move(shift: float) -> None:
+        xs = values + shift
+        major_ticks.set_data(np.repeat(xs, 3), np.tile([0.0, -0.32 * ground, np.nan], xs.size))
+        ms = minors + shift
+        minor_ticks.set_data(np.repeat(ms, 3), np.tile([0.0, -0.16 * ground, np.nan], ms.size))
+        for text, x in zip(labels, xs):
+            text.set_x(x)
+            text.set_visible(lo < x < hi)
+
+    move(0.0)
+    return move
+
+
 class _PalettePillowWriter:
     """Factory for a PillowWriter that stores frames as 8-bit palette images (a quarter of the
     memory of RGBA) with one palette for the whole GIF (no colour flicker)."""
@@ -262,11 +339,9 @@ def animate(
     top = ph + 1.25 * math.hypot(2 * b, 2 * h)
     ground = 0.08 * top
     fig, ax, lo, hi, top = floor_scene(lo, hi, top, ground, axes_height=0.86)
-    # floor marks that move with the floor; a fixed reference triangle at x = 0
-    span = hi - lo
-    spacing = 10 ** math.floor(math.log10(max(span / 8, 1e-6)))
-    marks = np.arange(lo - span, hi + span, spacing)
-    (floor_marks,) = ax.plot([], [], color="0.45", lw=0.8, zorder=2)
+    # a ruler that moves with the floor (the statue's sliding reads off it); a fixed reference
+    # triangle at x = 0
+    move_ruler = floor_ruler(ax, lo, hi, ground)
     ax.plot([0.0], [-ground], marker="^", color="0.2", ms=7, zorder=3, clip_on=False)
     ped_patch = Rectangle((0, 0), pw, ph, facecolor=COLORS["pedestal"], edgecolor="0.2", lw=1.0, zorder=3)
     if ped is not None:
@@ -275,30 +350,32 @@ def animate(
                          edgecolor="0.2", lw=1.0, zorder=4)
     ax.add_patch(stat_patch)
     (pivot,) = ax.plot([], [], "o", color="k", ms=3, zorder=5)
-    txt_t = fig.text(0.03, 0.95, "", fontsize=10, family="monospace", va="center")
-    txt_th = fig.text(0.30, 0.95, "", fontsize=10, family="monospace", va="center")
-    txt_reg = fig.text(0.97, 0.95, "", fontsize=10, va="center", ha="right",
+    # large enough to read when the picture is shrunk to a phone's width
+    txt_t = fig.text(0.03, 0.95, "", fontsize=14, family="monospace", va="center")
+    txt_th = fig.text(0.33, 0.95, "", fontsize=14, family="monospace", va="center")
+    txt_reg = fig.text(0.97, 0.95, "", fontsize=14, va="center", ha="right",
                        bbox={"boxstyle": "round,pad=0.3", "facecolor": "white", "edgecolor": "0.5"})
     if title:
-        fig.text(0.5, 0.895, title, fontsize=8, ha="center", va="center", color="0.3")
+        fig.text(0.5, 0.885, title, fontsize=9, ha="center", va="center", color="0.3")
     t_fall = response.overturn_time if response.overturned else None
+    trace = _sliding_trace(fig, response)
 
     def draw(k: int) -> None:
         xg, u, th = float(st["xg"][k]), float(st["u"][k]), float(st["theta"][k])
         reg = Regime(int(st["regime"][k]))
         x_ped = xg + u  # centre of the sliding body's base
-        floor_x = np.repeat(marks + (xg % spacing), 3)
-        floor_y = np.tile([0.0, -0.35 * ground, np.nan], marks.size)
-        floor_marks.set_data(floor_x, floor_y)
+        move_ruler(xg)
         ped_patch.set_xy((x_ped - 0.5 * pw, 0.0))
-        stat_patch.set_xy(_statue_outline(x_ped, ph, b, h, th))
-        if th != 0.0:
-            pivot.set_data([x_ped + math.copysign(b, th)], [ph])
-        else:
-            pivot.set_data([], [])
-        txt_t.set_text(f"t = {times[k]:6.2f} s")
-        txt_th.set_text(f"θ/α = {th / alpha:+.2f}")
         fallen = t_fall is not None and times[k] >= t_fall - 1e-12
+        if fallen and k == times.size - 1:  # the last frame: where the statue comes to rest
+            stat_patch.set_xy(resting_outline(x_ped, ph, pw, b, h, math.copysign(1.0, th)))
+            pivot.set_data([], [])
+        else:
+            stat_patch.set_xy(_statue_outline(x_ped, ph, b, h, th))
+            pivot.set_data(([x_ped + math.copysign(b, th)], [ph]) if th != 0.0 else ([], []))
+        trace(times[k])
+        txt_t.set_text(f"t = {times[k]:6.2f} s")
+        txt_th.set_text("fallen" if fallen else f"θ/α = {th / alpha:+.2f}")
         txt_reg.set_text("overturned" if fallen else REGIME_NAMES[reg])
         txt_reg.get_bbox_patch().set_facecolor("#f6c9c4" if fallen else REGIME_COLORS[reg])
 

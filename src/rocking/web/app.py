@@ -51,7 +51,7 @@ DEFAULTS: dict[str, Any] = {
     "QUEUE_TIMEOUT": 60.0,  # s a job waits for a free worker
     "KEEP_RUNS": 200,  # run and sweep folders kept on disk (oldest removed first)
     "WORK_DIR": None,  # where runs are written (default: a temporary folder, removed at exit)
-    "ANIMATION": {"fps": 10, "longest_video": 20.0, "dpi": 60},
+    "ANIMATION": {"fps": 20, "longest_video": 60.0, "dpi": 80},  # real time up to a minute of motion
     "FIGURE_DPI": 90,
     "ALLOWED_HOSTS": None,  # Host names accepted (None: any); serve() sets the loopback names
     "MP_CONTEXT": "forkserver",
@@ -113,9 +113,71 @@ _LABELS = {
     "simulation.duration": "duration",
 }
 
-_RUN_FILES = {"response.png", "energy.png", "animation.gif", "result.json"}
+_RUN_FILES = {"response.png", "response-narrow.png", "energy.png", "energy-narrow.png", "animation.gif", "result.json"}
 _SWEEP_FILES = {"report.html", "report.pdf", "sweep.csv", "sweep.png", "sweep-report.zip"}
 _ID_RE = re.compile(r"^[0-9a-f]{32}$")
+
+
+# ------------------------------------------------------------------------- bundled records
+def _provenance_table() -> dict[str, dict[str, str]]:
+    """Rows of the provenance table of the bundled records' README, by file stem: event, year,
+    station and component as the README spells them (empty if the README is missing)."""
+    from importlib.resources import files
+
+    try:
+        text = files("rocking").joinpath("data/records/README.md").read_text(encoding="utf-8")
+    except (FileNotFoundError, OSError):
+        return {}
+    rows: dict[str, dict[str, str]] = {}
+    header: list[str] | None = None
+    for line in text.splitlines():
+        if not line.startswith("|"):
+            header = None if not line.strip() else header
+            continue
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if header is None:
+            header = [c.lower() for c in cells]
+            continue
+        if set(cells[0]) <= set("-: ") or "file" not in header:
+            continue
+        row = dict(zip(header, cells))
+        rows[Path(row["file"]).stem] = row
+    return rows
+
+
+def _event(text: str) -> str:
+    """The event of a README cell, without the magnitude or country after a comma."""
+    return re.sub(r"\s*\[[a-z]\]", "", text).split(",")[0].strip()
+
+
+def _station(text: str) -> str:
+    """The station of a README cell: its name, not the network code or the footnote mark."""
+    parts = [p.strip() for p in re.sub(r"\s*\[[a-z]\]", "", text).split(",")]
+    named = [p for p in parts if p and not p.startswith("network")]
+    return named[-1] if named else ""
+
+
+def record_choices(records: Mapping[str, Path]) -> list[dict[str, Any]]:
+    """The bundled records as the form's dropdown shows them: ``name`` (the value sent),
+    ``label`` ("Northridge-01 1994 · Rinaldi Receiving Sta 228 · PGA 0.87 g") and ``pga_g``
+    (the record's PGA, g), sorted by label. A record the README does not describe shows its
+    name; one that cannot be read shows no PGA."""
+    table = _provenance_table()
+    choices = []
+    for name, path in records.items():
+        try:
+            pga_g = float(read_record(path).pga) / STANDARD_GRAVITY
+        except (RecordError, ValueError, OSError):
+            pga_g = None
+        row = table.get(name)
+        if row:
+            station = " ".join(filter(None, (_station(row.get("station", "")), row.get("comp.", "").split(" ")[0])))
+            text = f"{_event(row.get('event', name))} {row.get('year', '')} · {station}".strip()
+        else:
+            text = name
+        label = f"{text} · PGA {pga_g:.2f} g" if pga_g is not None else text
+        choices.append({"name": name, "label": label, "pga_g": pga_g, "short": text})
+    return sorted(choices, key=lambda c: c["label"].lower())
 
 
 class FormError(ValueError):
@@ -359,6 +421,26 @@ def parse_scatter(form: Mapping[str, Any]) -> float | None:
     return s
 
 
+def _missing_units_message(exc: RecordError) -> str:
+    """The reader asks for a keyword argument; the page has a selector for it."""
+    return (f"{exc.path.name}: the file does not state its units; choose them in the form's "
+            "\u201cunits of the file\u201d selector (g, cm/s\u00b2 (gal), m/s\u00b2 or mm/s\u00b2) and run again")
+
+
+#: Bytes other than tab, line feed, form feed and carriage return below 0x20: none in a text record.
+_CONTROL_BYTES = bytes(set(range(32)) - {9, 10, 12, 13}) + b"\x7f"
+
+
+def looks_binary(path: Path, probe: int = 65536) -> bool:
+    """True for a file that is not text: a NUL byte, or more than 1 % control characters, in its
+    first ``probe`` bytes (a spreadsheet, a picture, a compressed archive...)."""
+    with open(path, "rb") as fh:
+        head = fh.read(probe)
+    if b"\x00" in head:
+        return True
+    return len(head) > 0 and sum(head.count(bytes([c])) for c in _CONTROL_BYTES) > 0.01 * len(head)
+
+
 def _config_message(exc: ConfigError, hide: str | None) -> str:
     parts = []
     for fld, msg in exc.problems:
@@ -395,7 +477,7 @@ def summary_rows(s: Mapping[str, Any]) -> list[tuple[str, str, str, str]]:
         ("peak_rotation", "peak rotation", f"{_num(s['peak_rotation'])} rad"),
         ("peak_rotation_over_alpha", "peak rotation / α", _num(ratio, ".3f")),
         ("peak_sliding", "peak sliding", f"{_num(1e3 * s['peak_sliding'], '.2f')} mm"),
-        ("residual_sliding", "residual sliding", f"{_num(1e3 * s['residual_sliding'], '.2f')} mm"),
+        _residual_row(s),
         ("impacts", "impacts", str(s["impacts"])),
         ("first_rocking_time", "rocking started", _t(s["first_rocking_time"])),
         ("first_sliding_time", "sliding started", _t(s["first_sliding_time"])),
@@ -408,10 +490,22 @@ def summary_rows(s: Mapping[str, Any]) -> list[tuple[str, str, str, str]]:
     return [(k, label, text, json.dumps(s.get(k))) for k, label, text in rows]
 
 
-def _page_result(run_id: str, result: Mapping[str, Any]) -> dict[str, Any]:
+def _residual_row(s: Mapping[str, Any]) -> tuple[str, str, str]:
+    """The sliding left at the end; after an overturn the run ends at the fall, so the sliding
+    is the sliding at that instant, not where the statue comes to rest."""
+    mm = f"{_num(1e3 * s['residual_sliding'], '.2f')} mm"
+    if s["overturned"]:
+        return ("residual_sliding", "sliding at the fall", f"{mm} (at the fall, {_t(s['overturn_time'])})")
+    return ("residual_sliding", "residual sliding", mm)
+
+
+def _page_result(run_id: str, result: Mapping[str, Any], labels: Mapping[str, str] | None = None) -> dict[str, Any]:
+    """The run's result as the templates use it; ``labels`` name bundled records by event and
+    station instead of their file stem."""
     s = result["summary"]
     klass = "fails" if s["overturned"] else ("safe" if s.get("status") == "completed" else "stopped")
-    return {**result, "id": run_id, "rows": summary_rows(s), "verdict_class": klass}
+    motion = [(k, (labels or {}).get(v, v) if k == "record" else v) for k, v in result["motion"]]
+    return {**result, "id": run_id, "rows": summary_rows(s), "verdict_class": klass, "motion": motion}
 
 
 # ------------------------------------------------------------------------------- the state
@@ -436,7 +530,8 @@ class _State:
         self._lock = threading.Lock()
         # one client may hold at most all workers but one: another user can always start a run
         self.clients = _Clients(min(int(settings["MAX_JOBS_PER_CLIENT"]), max(1, self.runner.max_workers - 1)))
-        self.records = sorted(bundled_records())
+        self.records = record_choices(bundled_records())
+        self.record_labels = {c["name"]: c["short"] for c in self.records}
         self.forms: dict[str, dict[str, str]] = {}  # the inputs of each sweep, to go back to them
 
     def new_dir(self, kind: str) -> tuple[str, Path]:
@@ -514,6 +609,7 @@ def create_app(settings: Mapping[str, Any] | None = None) -> Flask:
             units=_UNITS,
             scale_kinds=_SCALE_KINDS,
             max_upload=_megabytes(int(cfg["MAX_UPLOAD"])),
+            max_upload_bytes=int(cfg["MAX_UPLOAD"]),
             max_sweep_points=int(cfg["MAX_SWEEP_POINTS"]),
             max_duration=f"{float(cfg['MAX_DURATION']):g}",
             timeout=f"{float(cfg['RUN_TIMEOUT']):g}",
@@ -599,6 +695,8 @@ def create_app(settings: Mapping[str, Any] | None = None) -> Flask:
                 raise FormError(f"the uploaded file {name} is empty")
             if size > int(cfg["MAX_UPLOAD"]):
                 raise RequestEntityTooLarge()
+            if looks_binary(path):
+                raise FormError(f"{name}: not a text record file; upload a PEER AT2, ESM ASCII or two-column text file")
             record_path = str(path)
         config = parse_form(request.form, record_path)
         # the worker refuses a longer series too (ResourceLimitError), should a record's time step be finer
@@ -625,6 +723,8 @@ def create_app(settings: Mapping[str, Any] | None = None) -> Flask:
                 return None, ("Invalid input", _units_conflict_message(exc))
             if isinstance(exc, LimitError):
                 return None, ("Over this server's limits", str(exc))
+            if isinstance(exc, RecordError) and exc.reason.startswith("the file does not state its units"):
+                return None, ("Choose the units", _missing_units_message(exc))
             if isinstance(exc, RecordError):
                 return None, ("Cannot read the record", _hide_path(" ".join(str(exc).split()), upload_dir))
             if isinstance(exc, ConfigError):
@@ -665,7 +765,7 @@ def create_app(settings: Mapping[str, Any] | None = None) -> Flask:
             status = {"timeout": 504, "busy": 503, "internal": 500}.get(job.error_kind or "", 400)
             title = {"timeout": "Run stopped", "busy": "Server busy"}.get(job.error_kind or "", "The run failed")
             return page(status, form=request.form, error_title=title, error=_hide_path(job.error or "", upload_dir))
-        return page(form=request.form, result=_page_result(run_id, job.result))
+        return page(form=request.form, result=_page_result(run_id, job.result, state.record_labels))
 
     @app.get("/runs/<run_id>")
     def show_run(run_id: str):
@@ -673,7 +773,7 @@ def create_app(settings: Mapping[str, Any] | None = None) -> Flask:
         if not path.is_file():
             abort(404)
         result = json.loads(path.read_text(encoding="utf-8"))
-        return render_template("run.html", result=_page_result(run_id, result))
+        return render_template("run.html", result=_page_result(run_id, result, state.record_labels))
 
     @app.get("/runs/<run_id>/<name>")
     def run_file(run_id: str, name: str):

@@ -8,7 +8,9 @@ pictures and files into ``out_dir`` and return a small, picklable dict for the p
 
 from __future__ import annotations
 
+import base64
 import csv
+import dataclasses
 import io
 import json
 import math
@@ -17,6 +19,8 @@ import zipfile
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 __all__ = ["SWEEP_COLUMNS", "run_task", "sweep_task"]
 
@@ -70,8 +74,58 @@ def _motion_rows(motion: Any, end_time: float, gravity: float) -> list[tuple[str
 
 
 def _animation_speed(duration: float, longest_video: float) -> float:
-    """Playback speed so that the animation lasts at most ``longest_video`` seconds."""
+    """Playback speed: real time (1) up to ``longest_video`` seconds of animation, faster for a
+    longer run so that the animation lasts ``longest_video`` seconds."""
     return max(1.0, duration / longest_video)
+
+
+#: What zero means on the energy plot (T + V relative to the floor, V = 0 upright).
+ENERGY_AXIS_LABEL = "T + V (J);  0 = upright, at rest on the floor"
+
+#: The size of the plots shown on a phone (in): narrow, so that their text stays readable.
+NARROW_RESPONSE_SIZE = (3.4, 5.6)
+NARROW_ENERGY_SIZE = (3.4, 4.2)
+
+
+def _legend_rows(ax: Any, *, ncol: int, below: bool = False) -> None:
+    """Lay out the legend of ``ax`` again in ``ncol`` columns (above the axes, or below them)."""
+    legend = ax.get_legend()
+    if legend is None:
+        return
+    handles, labels = legend.legend_handles, [t.get_text() for t in legend.get_texts()]
+    size = legend.get_texts()[0].get_fontsize() if labels else 7.5
+    legend.remove()
+    if below:
+        ax.figure.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=size, frameon=False,
+                         handlelength=1.5)
+    else:
+        ax.legend(handles, labels, loc="lower left", bbox_to_anchor=(0.0, 1.02), ncol=ncol, fontsize=size,
+                  frameon=False, borderaxespad=0.0, handlelength=1.5)
+
+
+def _save_plots(response: Any, out: Path, dpi: int) -> None:
+    """``response.png`` and ``energy.png`` for a wide screen, ``*-narrow.png`` for a phone."""
+    from matplotlib.figure import Figure
+
+    from ..viz.plots import plot_energy, plot_response
+
+    fig = plot_response(response)
+    fig.savefig(out / "response.png", dpi=dpi, metadata={"Software": None})
+    ax = plot_energy(response)
+    ax.set_ylabel(ENERGY_AXIS_LABEL)
+    ax.figure.savefig(out / "energy.png", dpi=dpi, metadata={"Software": None})
+
+    # a phone shows about 350 CSS pixels: drawn that wide, the text keeps its size
+    narrow = Figure(figsize=NARROW_RESPONSE_SIZE, layout="constrained")
+    axes = narrow.subplots(3, 1, sharex=True)
+    plot_response(response, axes=axes)
+    _legend_rows(axes[0], ncol=3)
+    narrow.savefig(out / "response-narrow.png", dpi=int(1.6 * dpi), metadata={"Software": None})
+    narrow = Figure(figsize=NARROW_ENERGY_SIZE, layout="constrained")
+    ax = plot_energy(response, ax=narrow.add_subplot())
+    ax.set_ylabel(ENERGY_AXIS_LABEL)
+    _legend_rows(ax, ncol=1, below=True)
+    narrow.savefig(out / "energy-narrow.png", dpi=int(1.6 * dpi), metadata={"Software": None})
 
 
 def run_task(
@@ -94,9 +148,8 @@ def run_task(
     from ..report import verdict
     from ..runner import run_response
     from ..viz.animation import animate
-    from ..viz.plots import plot_energy, plot_response
 
-    anim = {"fps": 10, "longest_video": 20.0, "dpi": 60, **(animation or {})}
+    anim = {"fps": 20, "longest_video": 60.0, "dpi": 80, **(animation or {})}
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
@@ -105,18 +158,16 @@ def run_task(
     seconds = time.perf_counter() - t0
     summary = response.summary()
     progress(1, 4, "plotting")
-    fig = plot_response(response)
-    fig.savefig(out / "response.png", dpi=dpi, metadata={"Software": None})
-    ax = plot_energy(response)
-    ax.figure.savefig(out / "energy.png", dpi=dpi, metadata={"Software": None})
+    _save_plots(response, out, dpi)
     progress(2, 4, "animating")
     speed = _animation_speed(response.end_time, float(anim["longest_video"]))
     animate(response, out / "animation.gif", speed=speed, fps=float(anim["fps"]), dpi=int(anim["dpi"]))
     result = {
-        "verdict": verdict(response),
+        "verdict": page_words(verdict(response)),
         "summary": _jsonable(summary),
         "motion": _motion_rows(response.motion, response.end_time, response.options.gravity),
-        "files": {"response": "response.png", "energy": "energy.png", "animation": "animation.gif"},
+        "files": {"response": "response.png", "energy": "energy.png", "animation": "animation.gif",
+                  "response_narrow": "response-narrow.png", "energy_narrow": "energy-narrow.png"},
         "animation_speed": speed,
         "seconds": seconds,
     }
@@ -242,6 +293,95 @@ def _describe(row: Mapping[str, Any]) -> str:
             + ("; μs inverts the concept" if row["inverted"] else ""))
 
 
+#: Configuration keys the library's messages name, in the words of the web page's form.
+_FORM_WORDS = (
+    ("raise simulation.free_time_limit or simulation.duration", "enter a longer duration"),
+    ("simulation.free_time_limit", "the free-motion limit"),
+    ("simulation.duration", "the duration"),
+)
+
+
+def page_words(text: str) -> str:
+    """A library message with the configuration keys it names replaced by the form's words."""
+    for key, words in _FORM_WORDS:
+        text = text.replace(key, words)
+    return text
+
+
+def _public_rows(rows: list[tuple[str, str]], duration: float | None) -> list[tuple[str, str]]:
+    """Input rows as a museum engineer reads them: no file path of this server, no class or
+    configuration key names."""
+    out = []
+    for name, value in rows:
+        if name in ("source", "configuration file"):
+            continue  # a path on this server (a bundled record's, or an upload's temporary folder)
+        if name == "kind":
+            value = {"GroundMotion": "recorded floor acceleration"}.get(value, "floor motion")
+        if name == "simulated" and duration is not None:
+            value = value.split(" (")[0] + f" (the duration entered, {duration:g} s)"
+        out.append((name, value))
+    return out
+
+
+def _sweep_figure_text(number: int, recommended: bool, scatter: float) -> Any:
+    from ..report.content import FigureText
+
+    chosen = "the recommended μs" if recommended else "the value with the fewest falls (none is safe)"
+    return FigureText(
+        number=number,
+        heading="Friction design sweep",
+        discussion=(f"Figure {number} shows the friction design sweep: each value of the pedestal's floor friction μs "
+                    f"was run at μs and μs·(1 ± {scatter:g}); the dashed line marks {chosen}, the run this report "
+                    "describes. The table below gives every value."),
+        caption=("Peak rotation of the statue (top, capped at 2 α; triangles: falls or undetermined within the "
+                 "scatter) and the free space the pedestal needs (bottom) against the pedestal's floor friction μs."),
+    )
+
+
+def _write_sweep_report(cfg_best: Any, response: Any, out: Path, *, title: str, sweep_rows: list[tuple[str, str]],
+                        table: list[tuple[str, str]], duration: float | None, sweep_png: Path, recommended: bool,
+                        scatter: float, dpi: int) -> None:
+    """``report.html`` and ``report.pdf`` of the report's run, with the sweep (its chart and a row
+    per μs) added to the report :func:`rocking.report.write_report` would write."""
+    from ..report.content import build_content, verdict_class
+    from ..report.html import png_base64, write_html
+    from ..report.pdf import write_pdf
+    from ..viz.plots import plot_energy, plot_response
+
+    content = build_content(response, cfg_best, title=title)
+    content.verdict = page_words(content.verdict)
+    content.warnings = [page_words(w) for w in content.warnings]
+    content.checks = [dataclasses.replace(c, value=page_words(c.value), limit=page_words(c.limit),
+                                          warning=c.warning and page_words(c.warning)) for c in content.checks]
+    content.inputs = {k: _public_rows(v, duration) for k, v in content.inputs.items()}
+    content.inputs["Friction design sweep"] = sweep_rows
+    content.inputs["Every value of μs swept"] = table
+    content.provenance = None if content.provenance is None else type(content.provenance)(
+        content.provenance.version, content.provenance.date, "the web page's inputs", content.provenance.input_hash)
+    content.source = None
+    figures = [plot_response(response), plot_energy(response).figure]
+    content.figures = [*content.figures, _sweep_figure_text(len(content.figures) + 1, recommended, scatter)]
+    images = [png_base64(fig, dpi) for fig in figures]
+    images.append(base64.b64encode(sweep_png.read_bytes()).decode("ascii"))
+    klass = verdict_class(response, content.checks)
+    write_html(content, images, out / "report.html", verdict_class=klass)
+    write_pdf(content, [*figures, _sweep_chart_figure(sweep_png)], out / "report.pdf", verdict_class=klass)
+
+
+def _sweep_chart_figure(png: Path) -> Any:
+    """The sweep chart as a matplotlib figure (the PDF draws figures, not files)."""
+    from matplotlib.figure import Figure
+    from PIL import Image
+
+    image = np.asarray(Image.open(png).convert("RGB"))
+    h, w = image.shape[:2]
+    fig = Figure(figsize=(7.0, 7.0 * h / w))
+    ax = fig.add_axes((0, 0, 1, 1))
+    ax.imshow(image)
+    ax.set_axis_off()
+    return fig
+
+
 def sweep_task(
     *,
     config: Mapping[str, Any],
@@ -276,7 +416,7 @@ def sweep_task(
         ``duration``, ``method``, ``files``.
     """
     from ..io.config import load_config
-    from ..report import verdict, write_report
+    from ..report import verdict
     from ..runner import run_response
 
     if not config.get("pedestal"):
@@ -321,18 +461,15 @@ def sweep_task(
     _write_csv(rows, out / "sweep.csv")
     _plot_sweep(rows, best, out / "sweep.png", dpi, recommended=recommended, friction_scatter=scatter,
                 tan_alpha=float(a["tan_alpha"]), sliding_limit=sliding_limit)
-    sweep_inputs = {
-        "friction design sweep": {
-            "values of the pedestal's floor friction μs": f"{n}, from {frictions[0]:g} to {frictions[-1]:g}",
-            "μk/μs": f"{ratio:g}",
-            "friction scatter s": f"{scatter:g} (each value also runs at μs·(1 ± s), μk alike)",
-            "verdict": " ".join(lines),
-            "recommended μs": f"{best['static_friction']:g}" if recommended else "none: no value is safe",
-            "rule": rule,
-            "computed with": method,
-            **{f"μs = {r['static_friction']:.4g}": _describe(r) for r in rows},
-        }
-    }
+    sweep_rows = [
+        ("values of the pedestal's floor friction μs", f"{n}, from {frictions[0]:g} to {frictions[-1]:g}"),
+        ("μk/μs", f"{ratio:g}"),
+        ("friction scatter s", f"{scatter:g} (each value also runs at μs·(1 ± s), μk alike)"),
+        ("verdict", " ".join(lines)),
+        ("recommended μs", f"{best['static_friction']:g}" if recommended else "none: no value is safe"),
+        ("rule", rule),
+    ]
+    table = [(f"μs = {r['static_friction']:.4g}", _describe(r)) for r in rows]
     if recommended and meets:
         which = "the recommended"
     elif recommended:
@@ -340,7 +477,8 @@ def sweep_task(
     else:
         which = "no safe value; the fewest falls with"
     title = f"Friction design sweep — {which} pedestal floor friction μs = {best['static_friction']:.4g}"
-    write_report((cfg_best, response), out, title=title, inputs=sweep_inputs, dpi=dpi)
+    _write_sweep_report(cfg_best, response, out, title=title, sweep_rows=sweep_rows, table=table, duration=duration,
+                        sweep_png=out / "sweep.png", recommended=recommended, scatter=scatter, dpi=dpi)
     files = ["report.html", "report.pdf", "sweep.csv", "sweep.png"]
     with zipfile.ZipFile(out / "sweep-report.zip", "w", compression=zipfile.ZIP_DEFLATED) as zf:
         for name in files:
@@ -360,6 +498,6 @@ def sweep_task(
         "ratio": ratio,
         "duration": response.end_time,
         "method": method,
-        "verdict": verdict(response),
+        "verdict": page_words(verdict(response)),
         "files": [name for name in files if (out / name).exists()] + ["sweep-report.zip"],
     }

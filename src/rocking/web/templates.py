@@ -9,6 +9,7 @@ __all__ = ["TEMPLATES"]
 
 _CSS = """
 * { box-sizing: border-box; }
+html { scroll-padding-bottom: 4em; }  /* a field scrolled into view is not hidden under the Run bar */
 body { font-family: system-ui, -apple-system, "Segoe UI", Roboto, "DejaVu Sans", sans-serif; margin: 0;
        color: #1d2430; background: #f4f5f7; font-size: 15px; }
 header { background: #22303f; color: #fff; padding: 0.7em 1.4em; }
@@ -16,24 +17,34 @@ header h1 { font-size: 1.25em; margin: 0; font-weight: 600; }
 header p { margin: 0.2em 0 0; color: #c9d3de; font-size: 0.9em; }
 header a { color: #fff; }
 main { display: flex; gap: 1.4em; padding: 1.2em 1.4em; align-items: flex-start; flex-wrap: wrap; }
-#inputs { flex: 0 0 390px; background: #fff; border: 1px solid #d9dde3; border-radius: 6px; padding: 0.8em 1em; }
-#output { flex: 1 1 560px; min-width: 0; }
-fieldset { border: 1px solid #e1e4e8; border-radius: 5px; margin: 0 0 0.8em; padding: 0.5em 0.8em 0.6em; }
+#inputs { flex: 0 1 390px; min-width: 0; max-width: 100%; background: #fff; border: 1px solid #d9dde3;
+          border-radius: 6px; padding: 0.8em 1em; }
+#output { flex: 1 1 560px; min-width: 0; max-width: 100%; }
+fieldset { border: 1px solid #e1e4e8; border-radius: 5px; margin: 0 0 0.8em; padding: 0.5em 0.8em 0.6em; min-width: 0; }
 legend { font-weight: 600; padding: 0 0.3em; }
 label { display: flex; justify-content: space-between; align-items: center; gap: 0.6em; margin: 0.3em 0;
         font-size: 0.92em; }
-label.check { justify-content: flex-start; }
+label.check { justify-content: flex-start; flex-wrap: nowrap; }
 input[type=text], input[type=number], select { width: 10.5em; padding: 0.22em 0.35em; font-size: 0.95em;
         border: 1px solid #b9c0c8; border-radius: 3px; }
 select#record { width: 15.5em; }
 input[type=file] { width: 15.5em; font-size: 0.85em; }
 .hint { color: #667; font-size: 0.8em; margin: 0.2em 0 0.3em; }
-.buttons { display: flex; gap: 0.6em; margin-top: 0.4em; }
+.buttons { display: flex; gap: 0.6em; margin-top: 0.4em; align-items: center; flex-wrap: wrap; }
+/* Run, and what it is doing, stay at the bottom of the screen while the form scrolls */
+#run-bar { position: sticky; bottom: 0; z-index: 2; background: #fff; margin: 0.4em -0.3em 0; padding: 0.45em 0.3em;
+           border-top: 1px solid #e1e4e8; }
 button { font-size: 1em; padding: 0.45em 1.1em; border-radius: 4px; border: 1px solid #2f5f8f;
          background: #2f6fab; color: #fff; cursor: pointer; }
 button.secondary { background: #fff; color: #2f5f8f; }
 button:disabled { opacity: 0.6; cursor: wait; }
-#busy { display: none; color: #2f5f8f; margin-top: 0.5em; font-size: 0.9em; }
+.busy { color: #2f5f8f; font-size: 0.9em; }
+.busy[hidden] { display: none; }
+.busy::before { content: ""; display: inline-block; width: 0.8em; height: 0.8em; margin-right: 0.4em;
+                border: 2px solid #9db7d3; border-top-color: #2f5f8f; border-radius: 50%; vertical-align: -0.1em;
+                animation: spin 0.9s linear infinite; }
+@keyframes spin { to { transform: rotate(360deg); } }
+#pga-preview { color: #2f5f8f; }
 .card { background: #fff; border: 1px solid #d9dde3; border-radius: 6px; padding: 0.9em 1.1em; margin-bottom: 1.1em; }
 .card h2 { font-size: 1.05em; margin: 0 0 0.6em; }
 .error { background: #fdecea; border: 1px solid #e0a9a3; color: #7d1d12; border-radius: 6px;
@@ -42,15 +53,16 @@ button:disabled { opacity: 0.6; cursor: wait; }
 .verdict.safe { background: #e7f4ea; border-left: 6px solid #2e8b45; }
 .verdict.fails { background: #fdecea; border-left: 6px solid #c0392b; }
 .verdict.stopped { background: #fff4e0; border-left: 6px solid #d68910; }
-table { border-collapse: collapse; font-size: 0.92em; }
-td, th { padding: 0.22em 0.8em 0.22em 0; text-align: left; vertical-align: top; }
+table { border-collapse: collapse; font-size: 0.92em; max-width: 100%; }
+td, th { padding: 0.22em 0.8em 0.22em 0; text-align: left; vertical-align: top; overflow-wrap: anywhere; }
 th { font-weight: 600; border-bottom: 1px solid #ccd; }
 td.name { color: #445; }
 .tables { display: flex; gap: 2.2em; flex-wrap: wrap; align-items: flex-start; }
 fieldset.off label:not(.check) { opacity: 0.45; }
 .figures { display: flex; flex-wrap: wrap; gap: 1em; align-items: flex-start; }
 .figures figure { margin: 0; }
-.figures img { max-width: 100%; border: 1px solid #e1e4e8; background: #fff; }
+.figures figure { max-width: 100%; }
+.figures img { max-width: 100%; height: auto; border: 1px solid #e1e4e8; background: #fff; }
 figcaption { font-size: 0.82em; color: #556; margin-top: 0.2em; max-width: 640px; }
 ul.warnings li, li.warning { color: #8a4b00; }
 progress { width: 100%; height: 1.3em; }
@@ -58,6 +70,25 @@ progress { width: 100%; height: 1.3em; }
 a.download { display: inline-block; margin: 0.3em 0.8em 0.3em 0; }
 tr.best td { font-weight: 600; background: #e7f4ea; }
 .scroll { max-width: 100%; overflow-x: auto; }  /* a wide table scrolls inside its card on a phone */
+#sweep-table td, #sweep-table th { overflow-wrap: normal; white-space: nowrap; }
+/* a phone: one column, labels above their fields where both do not fit on one line */
+@media (max-width: 640px) {
+  body { font-size: 16px; }
+  header { padding: 0.6em 0.8em; }
+  header h1 { font-size: 1.1em; }
+  main { padding: 0.7em 0.5em; gap: 0.9em; }
+  #inputs { flex: 1 1 100%; padding: 0.6em 0.6em; }
+  #output { flex: 1 1 100%; }
+  fieldset { padding: 0.4em 0.6em 0.5em; }
+  label { flex-wrap: wrap; }
+  input[type=text], input[type=number], select { width: 9.5em; font-size: 16px; }
+  select#record, input[type=file] { width: 100%; }
+  .card { padding: 0.7em 0.7em; }
+  .tables { gap: 1em; }
+  .tables table { width: 100%; }
+  .figures figure, .figures img { width: 100%; }
+  td.name { width: 48%; }
+}
 """
 
 _BASE = (
@@ -92,12 +123,12 @@ _FORM = """
     <legend>Floor motion</legend>
     <label>bundled record
       <select id="record" name="record">
-      {% for name in records %}
-        <option value="{{ name }}"{% if name == form.record %} selected{% endif %}>{{ name }}</option>
+      {% for r in records %}
+        <option value="{{ r.name }}" data-pga-g="{{ r.pga_g if r.pga_g is not none else '' }}"{% if r.name == form.record %} selected{% endif %}>{{ r.label }}</option>
       {% endfor %}
       </select>
     </label>
-    <label>or upload a file <input id="upload" type="file" name="upload"></label>
+    <label>or upload a file <input id="upload" type="file" name="upload" data-max-bytes="{{ max_upload_bytes }}"></label>
     <p class="hint">PEER AT2, ESM ASCII or two-column text (time, acceleration), at most {{ max_upload }};
        an uploaded file replaces the bundled record.</p>
     <label>file format
@@ -122,6 +153,7 @@ _FORM = """
       </select>
     </label>
     <label>value <input id="scale_value" name="scale_value" type="text" inputmode="decimal" value="{{ form.scale_value }}"></label>
+    <p class="hint" id="pga-preview" aria-live="polite"></p>
     <label>duration (s) <input id="duration" name="duration" type="text" inputmode="decimal" value="{{ form.duration }}" placeholder="the record's length" title="at most {{ max_duration }} s on this server"></label>
   </fieldset>
   <fieldset>
@@ -143,7 +175,8 @@ _FORM = """
     <label>width (m) <input id="pedestal_width" name="pedestal_width" type="text" inputmode="decimal" value="{{ form.pedestal_width }}" placeholder="optional"></label>
     <label>height (m) <input id="pedestal_height" name="pedestal_height" type="text" inputmode="decimal" value="{{ form.pedestal_height }}" placeholder="optional"></label>
   </fieldset>
-  <div class="buttons"><button id="run" type="submit">Run</button></div>
+  <div class="buttons" id="run-bar"><button id="run" type="submit">Run</button>
+    <span id="busy" class="busy" role="status" hidden data-limit="{{ timeout }}">Running… (at most {{ timeout }} s)</span></div>
   <fieldset style="margin-top:1em">
     <legend>Friction design sweep</legend>
     <p class="hint">Runs the statue on its pedestal for several floor frictions μs of the pedestal
@@ -156,9 +189,9 @@ _FORM = """
     <label>friction scatter s <input id="sweep_scatter" name="sweep_scatter" type="text" inputmode="decimal" value="{{ form.sweep_scatter }}" placeholder="0.2"></label>
     <p class="hint">Measured friction varies with the surfaces, humidity and age: a value counts as safe only if the
       statue stands at μs·(1 − s), μs and μs·(1 + s), μk alike (0 checks μs alone).</p>
-    <div class="buttons"><button id="sweep" class="secondary" type="submit" formaction="{{ url_for('start_sweep') }}">Run design sweep</button></div>
+    <div class="buttons"><button id="sweep" class="secondary" type="submit" formaction="{{ url_for('start_sweep') }}">Run design sweep</button>
+      <span id="sweep-busy" class="busy" role="status" hidden>Starting the design sweep…</span></div>
   </fieldset>
-  <p id="busy">Running… (at most {{ timeout }} s)</p>
 </form>
 <script>
 (function () {
@@ -169,12 +202,103 @@ _FORM = """
   }
   box.addEventListener("change", sync);
   sync();
-  form.addEventListener("submit", function () {
-    // after the browser has collected the fields: disabled buttons are not submitted
-    setTimeout(function () {
-      document.querySelectorAll("#inputs button").forEach(function (b) { b.disabled = true; });
-      document.getElementById("busy").style.display = "block";
-    }, 0);
+
+  // the PGA the scale gives, before running (the same arithmetic as the server: g = 9.80665 m/s²)
+  var G = 9.80665;
+  var record = document.getElementById("record"), upload = document.getElementById("upload");
+  var kind = document.getElementById("scale_kind"), value = document.getElementById("scale_value");
+  var preview = document.getElementById("pga-preview");
+  function number(text) {
+    text = text.trim();
+    if (text.split(",").length === 2 && text.indexOf(".") < 0) { text = text.replace(",", "."); }
+    var x = Number(text);
+    return text !== "" && isFinite(x) ? x : null;
+  }
+  function fmt(x, digits) { return x.toFixed(digits); }
+  function showPga() {
+    var v = number(value.value), k = kind.value;
+    var file = upload.files && upload.files.length ? upload.files[0].name : null;
+    var opt = record.options[record.selectedIndex];
+    var pga = opt && opt.getAttribute("data-pga-g") ? Number(opt.getAttribute("data-pga-g")) : null;
+    var text = "";
+    if (value.value.trim() === "") {
+      text = file ? "PGA: that of " + file : (pga ? "PGA: the record's " + fmt(pga, 3) + " g" : "");
+    } else if (v === null || !(v > 0)) {
+      text = "enter a positive number";
+    } else if (k === "factor") {
+      text = file ? "PGA after scaling: " + v + " × that of " + file + " (shown after the run)"
+           : (pga ? "PGA after scaling: " + fmt(v * pga, 3) + " g = " + fmt(v * pga * G, 2) + " m/s² (the record's "
+                    + fmt(pga, 3) + " g × " + v + ")" : "");
+    } else {
+      var g = k === "pga_g" ? v : v / G;
+      text = "PGA after scaling: " + fmt(g, 3) + " g = " + fmt(g * G, 2) + " m/s²"
+           + (!file && pga ? " (the record × " + fmt(g / pga, 3) + ")" : "");
+    }
+    preview.textContent = text;
+  }
+  [record, upload, kind].forEach(function (el) { el.addEventListener("change", showPga); });
+  value.addEventListener("input", showPga);
+  showPga();
+
+  // Run and the sweep post the form in the background: the page, and the file chosen, stay as
+  // they are; the answer replaces the output, which is brought into view (below the form on a phone)
+  var timer = null;
+  function busy(on, which) {
+    document.querySelectorAll("#inputs button").forEach(function (b) { b.disabled = on; });
+    var el = document.getElementById(which);
+    if (timer) { clearInterval(timer); timer = null; }
+    document.querySelectorAll("#inputs .busy").forEach(function (b) { b.hidden = true; });
+    if (!on) { return; }
+    el.hidden = false;
+    var limit = el.getAttribute("data-limit"), t0 = Date.now();
+    if (limit) {
+      var tick = function () {
+        var s = Math.floor((Date.now() - t0) / 1000);
+        el.textContent = "Running… " + s + " s of at most " + limit + " s";
+      };
+      tick();
+      timer = setInterval(tick, 1000);
+    }
+  }
+  function inView(el) {
+    var r = el.getBoundingClientRect();
+    return r.top >= 0 && r.top < window.innerHeight - 40;
+  }
+  function show(html) {
+    var doc = new DOMParser().parseFromString(html, "text/html");
+    var fresh = doc.getElementById("output");
+    if (!fresh) { throw new Error("the answer holds no result"); }
+    document.getElementById("output").replaceWith(document.adoptNode(fresh));
+    document.title = doc.title;
+    var target = document.getElementById("verdict") || document.getElementById("error");
+    if (target && !inView(target)) { target.scrollIntoView({block: "start"}); }
+  }
+  function failed(message) {
+    var out = document.getElementById("output");
+    out.innerHTML = "";
+    var div = document.createElement("div");
+    div.id = "error"; div.className = "error"; div.setAttribute("role", "alert");
+    div.textContent = "The server did not answer: " + message;
+    out.appendChild(div);
+    if (!inView(div)) { div.scrollIntoView({block: "start"}); }
+  }
+  form.addEventListener("submit", function (ev) {
+    var big = upload.files && upload.files.length && upload.files[0].size > Number(upload.getAttribute("data-max-bytes"));
+    if (!window.fetch || !window.DOMParser || big) {
+      // a plain post (the server answers an oversized upload before reading it, which fetch reports as a
+      // network error); disabled buttons are not submitted, so wait until the browser has read them
+      setTimeout(function () { busy(true, "busy"); }, 0);
+      return;
+    }
+    ev.preventDefault();
+    var sweep = ev.submitter && ev.submitter.id === "sweep";
+    var action = sweep ? ev.submitter.getAttribute("formaction") : form.getAttribute("action");
+    var data = new FormData(form);
+    busy(true, sweep ? "sweep-busy" : "busy");
+    fetch(action, {method: "POST", body: data, credentials: "same-origin"}).then(function (r) {
+      if (r.redirected) { window.location.assign(r.url); return null; }  // a sweep's progress page
+      return r.text().then(function (html) { busy(false); show(html); });
+    }).catch(function (err) { busy(false); failed(String(err && err.message || err)); });
   });
 })();
 </script>
@@ -238,17 +362,27 @@ _RESULT = """
   <div class="figures">
     <figure>
       <img id="animation" alt="animation of the statue" src="{{ url_for('run_file', run_id=result.id, name=result.files.animation) }}">
-      <figcaption>Played at {{ "%g"|format(result.animation_speed|round(2)) }}× real time; the colour tells the regime
-        (rest, rock, slide, slide-rock).</figcaption>
+      <figcaption>{% if result.animation_speed > 1.001 %}Played at {{ "%g"|format(result.animation_speed|round(2)) }}× real
+        time (the run is longer than a minute){% else %}Played in real time{% endif %}; the colour of the label tells
+        the regime (rest, rock, slide, slide-rock). The floor's ruler moves with the floor; the trace at the top
+        magnifies the sliding u (mm).</figcaption>
     </figure>
+    {% for key, element, alt, caption in [
+        ("response", "response-plot", "rotation, sliding and floor acceleration against time",
+         "Rotation θ/α, sliding u and floor acceleration against time; the background shows the regime, ticks mark impacts."),
+        ("energy", "energy-plot", "mechanical energy against time",
+         "Mechanical energy T + V relative to the floor, with the energy ledger. Zero is the statue standing upright with "
+         ~ "everything at rest on the floor; the energy goes below zero only when the statue leans more than 2α "
+         ~ "(its centre of mass is then lower than when it stands), that is when it falls.")] %}
     <figure>
-      <img id="response-plot" alt="rotation, sliding and floor acceleration against time" src="{{ url_for('run_file', run_id=result.id, name=result.files.response) }}">
-      <figcaption>Rotation θ/α, sliding u and floor acceleration against time; the background shows the regime, ticks mark impacts.</figcaption>
+      <a href="{{ url_for('run_file', run_id=result.id, name=result.files[key]) }}" title="full size">
+      <picture>
+        {% if result.files.get(key ~ "_narrow") %}<source media="(max-width: 640px)" srcset="{{ url_for('run_file', run_id=result.id, name=result.files[key ~ '_narrow']) }}">{% endif %}
+        <img id="{{ element }}" alt="{{ alt }}" src="{{ url_for('run_file', run_id=result.id, name=result.files[key]) }}">
+      </picture></a>
+      <figcaption>{{ caption }}</figcaption>
     </figure>
-    <figure>
-      <img id="energy-plot" alt="mechanical energy against time" src="{{ url_for('run_file', run_id=result.id, name=result.files.energy) }}">
-      <figcaption>Mechanical energy relative to the floor, with the energy ledger.</figcaption>
-    </figure>
+    {% endfor %}
   </div>
 </div>
 """
