@@ -1,16 +1,16 @@
-"""Independent closed-form oracles for the test suite (O1-O20 of shared/design/oracles.md).
+"""Independent closed-form oracles for the test suite (O1-O20, as re-derived for this project).
 
 Pure functions on numpy/scipy only.  This module never imports ``rocking``: the library is
 tested *against* it.
 
-Conventions (same as oracles.md):
+Conventions:
 
 * SI units, angles in radians.
 * b, h: half-width and half-height of a uniform rectangle; R = sqrt(b^2 + h^2);
   alpha = atan(b/h); I_O = (4/3) m R^2 (about a base corner); p = sqrt(3 g / (4 R)).
 * eta = theta_dot+ / theta_dot- (velocity ratio); eta^2 is Housner's energy ratio.
 * theta > 0 means the block pivots on its +x corner and leans to +x.
-* g defaults to 9.81 m/s^2, the value used in every table of oracles.md.
+* g defaults to 9.81 m/s^2, the value of every table these oracles were checked against.
 """
 
 from __future__ import annotations
@@ -351,7 +351,7 @@ def shenton_regime(b: float, h: float, mu_s: float, lam: float, mu_k: float | No
       rock        lam > b/h and mu_req(lam) <= mu_s;
       slide       lam > mu_s and mu_k <= b/h (a sliding block accelerates at mu_k g);
       slide-rock  otherwise.
-    With mu_k = mu_s (the default) this is exactly the rule of oracles.md O15.
+    With mu_k = mu_s (the default) this is exactly Shenton's rule (O15).
     """
     if mu_k is None:
         mu_k = mu_s

@@ -1,7 +1,7 @@
 """Independent sympy derivation of the statue-on-pedestal equations (oracle for the solver).
 
 Never imports ``rocking``.  Everything below is derived here from positions, kinetic and
-potential energy and momentum balances; nothing is retyped from shared/design/derivation.md
+potential energy and momentum balances; nothing is retyped from docs/theory/derivation.md
 (the self-check tests compare the results with the formulas printed there).
 
 Model

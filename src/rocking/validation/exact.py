@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import integrate, optimize
 
-#: gravity of every table in the manual, m/s² (the oracle tables of shared/design/oracles.md)
+#: gravity of every table in the manual, m/s² (the oracle tables of tests/oracles/closed_forms.py)
 G = 9.81
 
 

@@ -277,7 +277,7 @@ response to a rectangular pulse. The exact forms (the energy integral of the qua
 exact decay recursion, the impulse limit from angular momentum and energy) follow from the same
 equations without the small-angle step; they are evaluated here, not transcribed, and the
 small-angle forms are compared with them. The velocity-step limit and the rectangular-pulse
-threshold are written as derived in `shared/design/oracles.md` (O6, O8); Housner's printed
+threshold are written as derived in the closed-form oracles of the test suite (`tests/oracles/closed_forms.py`) (O6, O8); Housner's printed
 expressions were not compared symbol by symbol.
 
 Blocks: B = 2b, H = 2h. "ours" is `rocking.simulate` with g = 9.81 m/s² and the default

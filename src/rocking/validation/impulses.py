@@ -67,7 +67,7 @@ The double impulse stands for the main pulse of a near-fault record: a floor vel
 Nabeshima et al. obtain the limit in closed form from conservation of angular momentum (at each
 impulse and at the impact) and of energy (between them), and find that the worst instant for the
 second impulse is just after the impact. The closed form evaluated here is V = V_step/(1 + η), with
-V_step the single-step limit of section 1 and Housner's η, as derived in `shared/design/oracles.md`
+V_step the single-step limit of section 1 and Housner's η, as derived in the closed-form oracles of the test suite (`tests/oracles/closed_forms.py`)
 (O7) from those two conservation laws; the paper's printed expression was not compared symbol by
 symbol. "ours" drives the library with two rectangular acceleration pulses 1e-5 s wide (a recorded
 motion built with `GroundMotion.from_arrays`), the second starting at the first impact of the

@@ -208,7 +208,7 @@ amplitude against the pulse frequency, a_p/(g·tan α) against β = ω_p/p. Over
 before any impact (mode 1) or after one or more impacts, at lower amplitudes whose boundary depends on
 η; between these branches the block survives again (the safe region, here "island"). The mode-1
 boundary has a closed form for the small-angle equation. The forms evaluated here are those of
-`shared/design/oracles.md` (O9: the one-sine pulse a_p·sin(ω_p t + ψ) with sin ψ = g·α/a_p, so that
+the closed-form oracles of the test suite (`tests/oracles/closed_forms.py`) (O9: the one-sine pulse a_p·sin(ω_p t + ψ) with sin ψ = g·α/a_p, so that
 rocking starts at t = 0 and the pulse lasts until ω_p t + ψ = 2π; O9b: a_p·cos(ω_p t) for one period),
 re-derived from the small-angle equation; the papers' printed expressions and pulse phases were not
 compared symbol by symbol. The closed forms give a_p/(g·α); they are compared with a_p/(g·tan α), the

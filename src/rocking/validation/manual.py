@@ -185,7 +185,7 @@ REFERENCES = """\
   * Ther, T., Kollár, L. (2017). Refinement of Housner's model on rocking blocks. *Bull. Earthquake Eng.*
   * Wittich, C. E., Hutchinson, T. C. (2015). *Earthquake Eng. Struct. Dyn.* 44:2425; (2017) 46:1391.
 * The closed forms as re-derived for this project, with their status (checked in print or not):
-  `shared/design/oracles.md` (O1–O20); the equations of the library: `docs/theory/derivation.md`.
+  the closed-form oracles of the test suite (`tests/oracles/closed_forms.py`) (O1–O20); the equations of the library: `docs/theory/derivation.md`.
 """
 
 

@@ -41,7 +41,7 @@ def shenton_rows(quick: bool) -> list[Row]:
         rows.append(Row(f"S1.{i}", "Shenton 1996", f"friction above which pure rocking (not slide-rock) starts, "
                                                    f"b/h = {t:.4g}, λ = a_g/g = 1.5·b/h", "exact",
                         published=published, ours=ours, tol=1e-8,
-                        note="published: Shenton's criterion, written as derived in oracles.md O15"))
+                        note="published: Shenton's criterion, written as derived in the test suite's closed-form oracle O15"))
     # the four regions of Shenton's map, sampled around their boundaries
     t = 0.25
     points = list(itertools.product((0.5, 0.95, 1.05, 1.2, 2.0, 6.0), (0.5, 0.95, 1.05, 1.5, 3.0, 8.0)))
@@ -72,7 +72,7 @@ Shenton classifies the motion that starts from rest under a floor acceleration �
 rest, slide, rock or slide-rock. A block slides first if μ < b/h and λ > μ (and then cannot also start
 to rock); it rocks if μ and λ exceed b/h and the friction can hold the corner, μ ≥ μ_rock(λ); it
 slide-rocks otherwise. μ_rock(λ) = [λ(4b² + h²) + 3bh]/[(b² + 4h²) + 3λbh] for a uniform rectangle,
-the ratio of the corner's reactions at the onset of rocking, as derived in `shared/design/oracles.md`
+the ratio of the corner's reactions at the onset of rocking, as derived in the closed-form oracles of the test suite (`tests/oracles/closed_forms.py`)
 (O15); Shenton's printed form was not compared symbol by symbol. "ours" is the library's regime
 just after t = 0 under a constant floor acceleration (`RectanglePulse`); the boundary is bisected
 on μ."""
