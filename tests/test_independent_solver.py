@@ -162,6 +162,16 @@ def test_other_statues_whole_run(height, pedestal):
     assert "IMPACT" in _kinds(events) and not r.overturned
 
 
+def test_pedestal_starts_sliding_while_the_statue_rocks():
+    """The pedestal (μs = 0.3) holds while the statue rocks, then slips: the slip onset is found
+    on the rocking state, where the floor force has the centripetal term in θ̇². (Written for
+    the mutant models/modes.py:35, θ̇ read from y[4]; it does not kill it: bench/MUTATION.md.)"""
+    pedestal = rk.Pedestal(mass=1.0, friction=rk.Friction(static=0.3, kinetic=0.24))
+    c, r = _both(rk.System(statue=STATUE, pedestal=pedestal), rk.Harmonic(amplitude=4.0, frequency=1.2, cycles=3))
+    events = _assert_agree(c, r)
+    assert ("SLIP", "ROCK", "SLIDE_ROCK") in {e[1:] for e in events}
+
+
 # ---------------------------------------------------------------------------------------------
 # A record, pulses, pure sliding
 # ---------------------------------------------------------------------------------------------

@@ -327,3 +327,21 @@ def test_the_pedestal_uplift_check_needs_both_its_width_and_height(width, height
     pedestal = rk.Pedestal(mass=100.0, friction=rk.Friction(static=3.0, kinetic=3.0), width=width, height=height)
     r = rk.simulate(rk.System(statue=statue, pedestal=pedestal), rk.Harmonic(amplitude=0.8 * 9.81, frequency=1.5, cycles=3))
     assert any("pedestal would uplift" in w for w in r.warnings) is uplift, r.warnings
+
+
+def test_only_impacts_on_a_held_pedestal_count_as_short_of_floor_friction():
+    """Under the paper's law the paper's case 10a has 116 impacts: 115 on a pedestal the floor
+    holds, which need more than μs = 0.4 from the floor, and one on a sliding pedestal (whose
+    floor impulse ratio also exceeds μs, but a sliding face is not "held" by it). The warning
+    counts the 115. Kills transitions.py:56 (`… and u̇⁺ == 0 or ratio > μs`, which counts the
+    sliding one too)."""
+    statue = rk.Statue(width=1.0, height=4.0, mass=1.0, restitution=0.8)
+    pedestal = rk.Pedestal(mass=1.0, friction=rk.Friction(static=0.4, kinetic=0.3))
+    r = rk.simulate(rk.System(statue=statue, pedestal=pedestal), rk.Harmonic(amplitude=6.75, frequency=1.2, cycles=30),
+                    options=rk.Options(impact="paper"))
+    held = [i for i in r.impacts if i.u_dot_before == i.u_dot_after == 0.0 and i.friction_needed > 0.4]
+    sliding = [i for i in r.impacts if i.u_dot_before != 0.0 and i.friction_needed > 0.4]
+    assert sliding, "the case lost its impact on a sliding pedestal"
+    top = max(i.friction_needed for i in held)
+    assert [w for w in r.warnings if "needed more floor friction" in w] == [
+        f"{len(held)} impact(s) needed more floor friction than μs (up to {top:.3f}); the paper's impact law ignores this"]
