@@ -17,6 +17,7 @@ from rocking.analyses.design import (
     plot_design,
     run_undetermined,
 )
+from rocking.viz.plots import _mm_text
 
 G = 9.81
 OPTS = rk.Options(gravity=G)
@@ -237,11 +238,26 @@ def test_run_undetermined_reads_still_moving_when_present():
     assert run_undetermined(ds).tolist() == [True, False, True, False]
 
 
+def test_lengths_and_kinetic_friction_read_as_written(design):
+    for value, text in ((0.0, "0 mm"), (5.17e-05, "< 0.01 mm"), (0.05, "0.05 mm"), (0.517, "0.52 mm"),
+                        (12.0, "12 mm"), (303.66, "303.7 mm"), (160.0, "160 mm")):
+        assert _mm_text(value) == text
+    # μk = (0.24/0.3)·μs is 0.16000000000000003 in floats: the table says 0.16
+    assert repr(float(design.mu_k.sel(mu_s=0.2))) == "0.16000000000000003"
+    assert candidate_table(design)["mu_k"].tolist()[::2] == [0.08, 0.16, 0.24, 0.36]
+    assert design.attrs["recommended_mu_k"] in (0.08, 0.16, 0.24, 0.36)
+    report = design_report(design)
+    assert "e-0" not in report and "0000000" not in report
+
+
+def _panel_titles(fig):
+    return [t.get_text() for row in fig.subfigs[1].subfigs for cell in np.ravel(row) for t in cell.texts]
+
+
 def test_design_chart(design):
     fig = plot_design(design)
-    assert len(fig.axes) >= 2
-    titles = [ax.get_title() for ax in fig.axes]
-    assert "pedestal mass 150 kg" in titles and "pedestal mass 600 kg" in titles
+    assert len(fig.axes) == 6  # per pedestal mass: θ/α, overturn rate, sliding
+    assert _panel_titles(fig) == ["pedestal mass 150 kg", "pedestal mass 600 kg"]
     # the recommended μs = 0.2 (150 kg) with its scatter band [0.16, 0.24] shaded
     ax = fig.axes[0]
     bands = [p for p in ax.patches if p.get_label() == "μs·(1 ± 0.2)"]
@@ -370,7 +386,7 @@ def test_the_example_is_infeasible_and_says_so_first(cli, tmp_path, capsys):
         per_motion = ds.clearance.sel(mu_s=a["recommended_mu_s"], pedestal_mass=150.0).load()
     assert printed[4].startswith("* Recommended, because not falling comes first: μs = 0.2 (μk = 0.16), pedestal "
                                  f"mass 150 kg, the safe candidate that needs the least free space: "
-                                 f"{1e3 * float(per_motion.max()):.1f} mm")
+                                 f"{_mm_text(1e3 * float(per_motion.max()))}")
     assert printed[5] == ("* Within the limits, the fewest falls: μs = 0.4 (μk = 0.32), pedestal mass 150 kg: the "
                           "statue falls under 1 of 6 motions: Kobe1995_Takatori_000.")
     assert printed[6].startswith("* Warning: a floor-face μs (μs·(1 + 0.2) within the scatter) at or above the "
@@ -378,4 +394,4 @@ def test_the_example_is_infeasible_and_says_so_first(cli, tmp_path, capsys):
     assert printed[6].endswith("Candidates concerned: μs = 0.45.")
     report = (out / "design_report.md").read_text()
     for name, clearance in zip(per_motion.motion.values, per_motion.values):
-        assert f"| {name} | {1e3 * clearance:.1f} | stands |" in report
+        assert f"| {name} | {_mm_text(1e3 * clearance).removesuffix(' mm')} | stands |" in report

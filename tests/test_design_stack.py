@@ -12,6 +12,7 @@ from rocking.analyses.batch import run_cases, stack_summary_values, sweep
 from rocking.analyses.design import design_report, friction_design, motion_family, plot_design
 from rocking.analyses.store import Run, StudyInterrupted, run_stored
 from rocking.stack import Block, Interface, Stack, simulate_stack
+from rocking.viz.plots import TOP_LIMIT_COLOR, _mm_text
 
 G = 9.81
 OPTS = rk.Options(gravity=G)
@@ -130,10 +131,10 @@ def test_only_the_top_face_saves_the_statue_and_the_report_names_it(top_face_des
     lines = ds.attrs["verdict_lines"].split("\n")
     assert lines[0].startswith("Recommended pedestal faces: floor μs = 0.6 (μk = 0.5), top μs = 0.15 (μk = 0.12)")
     assert lines[1] == ("Which face does the work, for the recommended design (largest over the motions and friction "
-                        f"levels): the top face isolates: the statue slides {1e3 * top:.1f} mm on the pedestal's top "
-                        "face, the pedestal slides 0.0 mm on the floor; the statue does not rock.")
+                        f"levels): the top face isolates: the statue slides {_mm_text(1e3 * top)} on the "
+                        "pedestal's top face, the pedestal slides 0 mm on the floor; the statue does not rock.")
     report = design_report(ds)
-    assert "the top face isolates" in report and "| floor face (mm) | top face (mm) |" in report
+    assert "the top face isolates" in report and "| floor face (mm) | top face (mm, limit 400 mm) |" in report
     # a run of the sweep is the single stack run, at a scattered friction level too
     name = list(motions)[0]
     stack = Stack(blocks=(Block(name="pedestal", width=2.0, height=0.4, mass=300.0),
@@ -164,15 +165,145 @@ def test_sliding_to_the_pedestal_edge_is_not_safe_and_is_named():
     assert "slides to the edge of the pedestal at μs·0.8, μs, μs·1.2 (a fall risk)" in design_report(ds)
 
 
-def test_two_face_chart(top_face_design, tmp_path):
+def _panels(fig):
+    """(title, rotation axes) of each panel of a design chart, row by row."""
+    cells = [cell for row in fig.subfigs[1].subfigs for cell in np.ravel(row)]
+    rot = [ax for ax in fig.axes if hasattr(ax, "sliding_ax")]
+    return [(cell.texts[0].get_text(), ax) for cell, ax in zip(cells, rot)]
+
+
+def test_two_face_chart_has_a_row_per_top_face_and_numbers_what_it_clips(top_face_design, tmp_path):
     _, ds = top_face_design
     fig = plot_design(ds)
-    axes = [ax for ax in fig.axes if hasattr(ax, "right_ax")]
-    assert len(axes) == 2  # one panel per top-face μs
-    assert "top face μs 0.15" in axes[0].get_title()
-    labels = [line.get_label() for line in axes[0].right_ax.get_lines()]
-    assert "statue on the top face (mm)" in labels
+    panels = _panels(fig)
+    assert [t for t, _ in panels] == ["top face μs 0.15, width 2 m", "top face μs 0.6, width 2 m"]
+    assert len(fig.axes) == 6  # θ/α, fall rate, sliding: each on its own axes
+    ax = panels[0][1]
+    assert [line.get_label() for line in ax.sliding_ax.get_lines()][:2] == ["pedestal on the floor",
+                                                                             "statue on the top face"]
+    assert ax.rate_ax.get_ylabel() == "fall\nrate (–)" and ax.get_ylabel() == "mean peak\n|θ|/α (–)"
+    # both motions topple the statue on the gripping top face: θ/α = π/(2α) = 6.41, clipped and numbered
+    clipped = panels[1][1]
+    assert float(ds.peak_rotation_ratio_mean.sel(mu_s_top=0.6).item()) == pytest.approx(6.41, abs=0.005)
+    assert "6.41" in [t.get_text() for t in clipped.texts]
+    assert max(clipped.get_lines()[0].get_ydata()) == 2.0
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    canvas = FigureCanvasAgg(fig)
     fig.savefig(tmp_path / "chart.png")
+    # the legend sits in the strip above the panels, clear of every axes
+    renderer = canvas.get_renderer()
+    legend = fig.subfigs[0].legends[0].get_window_extent(renderer)
+    assert all(not legend.overlaps(a.get_window_extent(renderer)) for a in fig.axes)
+    assert "recommended μs = 0.6" in [t.get_text() for t in fig.subfigs[0].legends[0].get_texts()]
+
+
+def test_the_chart_draws_each_width_s_top_face_limit(top_limit_designs):
+    fig = plot_design(top_limit_designs[None])
+    panels = _panels(fig)
+    assert [t for t, _ in panels] == ["top face μs 0.15, width 1.2 m", "top face μs 0.15, width 2 m"]
+    for (_, ax), room in zip(panels, ("200 mm", "400 mm")):
+        labels = [t.get_text() for t in ax.sliding_ax.texts]
+        assert labels == [f"top-face limit\n{room}"]  # no sliding_limit was given
+        limit = [line for line in ax.sliding_ax.get_lines() if line.get_color() == TOP_LIMIT_COLOR]
+        assert [float(line.get_ydata()[0]) for line in limit] == pytest.approx([float(room.split()[0])])
+    # the rows share their axes, so the 400 mm limit fits both panels
+    assert panels[0][1].sliding_ax.get_ylim() == panels[1][1].sliding_ax.get_ylim()
+    assert panels[0][1].sliding_ax.get_ylim()[1] > 400
+
+
+# ------------------------------------------------------- the statue's slide on the top face
+def test_the_default_top_limit_is_half_the_room_on_each_pedestal_width():
+    from rocking.analyses.design import default_top_sliding_limit
+
+    # 0.5·((W − 0.4)/2 − |offset|): the offset's sign does not matter, the nearer edge does
+    np.testing.assert_allclose(default_top_sliding_limit([0.8, 1.2], 0.4, -0.05), [0.075, 0.175], rtol=1e-12)
+    with pytest.raises(ValueError, match="top_sliding_limit: its default, half the room"):
+        default_top_sliding_limit([0.5], 0.4, 0.1)
+    off_centre = Stack(blocks=(Block(name="pedestal", width=1.0, height=0.4, mass=300.0),
+                               Block(name="statue", width=0.4, height=1.6, mass=200.0, offset=0.05)),
+                       interfaces=(Interface(friction=rk.Friction(static=0.6)),
+                                   Interface(friction=rk.Friction(static=0.6))))
+    ds = friction_design(off_centre, {"m": rk.SinePulse(amplitude=1.0, frequency=2.0)}, mu_s=[0.6],
+                         pedestal_width=[0.8, 1.2], friction_scatter=0.0, free_time=2.0, options=OPTS, workers=1)
+    np.testing.assert_allclose(ds.top_sliding_limit.values, [0.075, 0.175], rtol=1e-12)
+    assert ("statue's slide on the top face ≤ half the room there, 0.5 × ((pedestal width − statue width)/2 − "
+            "|offset|): 75 mm on the 0.8 m pedestal, 175 mm on the 1.2 m pedestal (the default: "
+            "design.top_sliding_limit not given)") in design_report(ds)
+
+
+@pytest.fixture(scope="module")
+def top_limit_designs():
+    """A gripping floor face under a slippery top face (the statue slides 0.33 m on its pedestal), or
+    a slippery floor face (the pedestal slides instead), on a 1.2 m and a 2 m pedestal."""
+    motions = motion_family("harmonic", [4.0], [1.2, 1.6], cycles=3)
+    return {limit: friction_design(SYSTEM, motions, mu_s=[0.15, 0.6], mu_s_top=[0.15], mu_k_top_ratio=0.8,
+                                   pedestal_width=[1.2, 2.0], free_time=5.0, options=OPTS, workers=1,
+                                   top_sliding_limit=limit)
+            for limit in (None, 0.1, math.inf)}
+
+
+def _recommended(ds):
+    a = ds.attrs
+    return a["recommended_mu_s"], a["recommended_pedestal_width"]
+
+
+def test_the_top_limit_moves_the_recommendation_and_the_verdict_says_why(top_limit_designs):
+    loose, default, tight = (top_limit_designs[k] for k in (math.inf, None, 0.1))
+    slide = float(loose.top_sliding_max.sel(mu_s=0.6, pedestal_width=1.2).item())
+    assert 0.2 < slide < 0.4  # over the default 200 mm on the 1.2 m pedestal, within the 400 mm on the 2 m one
+    # no limit: the gripping floor face on the narrower pedestal, as before the limit existed
+    assert _recommended(loose) == (0.6, 1.2) and "The limit on the statue's slide" not in loose.attrs["verdict_lines"]
+    # the default limit: the statue may not slide that far on the 1.2 m pedestal, the 2 m one takes it
+    assert _recommended(default) == (0.6, 2.0)
+    assert not bool(default.feasible.sel(mu_s=0.6, pedestal_width=1.2).item())
+    lines = default.attrs["verdict_lines"].split("\n")
+    assert lines[1] == ("The limit on the statue's slide on the pedestal's top face excludes floor μs = 0.6 "
+                        "(μk = 0.5), top μs = 0.15 (μk = 0.12), pedestal mass 300 kg, width 1.2 m, which would "
+                        f"otherwise be recommended: the statue slides {_mm_text(1e3 * slide)} on the pedestal's "
+                        "top face, more than the 200 mm limit there.")
+    assert default.attrs["excluded_by_top_sliding_pedestal_width"] == 1.2
+    # 100 mm: neither pedestal takes the top face's slide; the slippery floor face isolates instead
+    assert _recommended(tight) == (0.15, 2.0) and tight.attrs["excluded_by_top_sliding_mu_s"] == 0.6
+    assert float(tight.top_sliding_max.sel(mu_s=0.15, pedestal_width=2.0).item()) <= 0.1
+    assert "statue's slide on the top face ≤ 100 mm" in tight.attrs["verdict"]
+
+
+def test_the_report_shows_the_top_slide_against_its_limit(top_limit_designs):
+    default = top_limit_designs[None]
+    report = design_report(default)
+    assert "| motion | floor face (mm) | top face (mm, limit 400 mm) |" in report
+    assert "| top slide (mm) | top limit (mm) |" in report
+    row = next(line for line in report.splitlines() if line.startswith("| 0.6 | 0.5 | 0.15 | 0.12 | 300 | 1.2 |"))
+    slide = _mm_text(1e3 * float(default.top_sliding_max.sel(mu_s=0.6, pedestal_width=1.2).item()))
+    assert f"| {slide.removesuffix(' mm')} | 200 |" in row
+    assert row.endswith("| no |")  # does not meet the limits
+    assert "Limits: statue's slide on the top face ≤ half the room there" in report
+    assert ("Limits: no limit on the statue's slide on the top face (top_sliding_limit = inf)."
+            in design_report(top_limit_designs[math.inf]))
+
+
+def test_bad_top_limits_are_refused_naming_the_field(cli, tmp_path, capsys):
+    for bad in (0.0, -0.1, math.nan, "0.2", True):
+        with pytest.raises(ValueError, match=r"^top_sliding_limit must be a number > 0 \(m\), or inf for no limit"):
+            friction_design(SYSTEM, {"m": MOTION}, mu_s=[0.3], mu_s_top=[0.2], top_sliding_limit=bad, workers=1)
+    with pytest.raises(ValueError, match="top_sliding_limit needs the stack engine"):
+        friction_design(SYSTEM, {"m": MOTION}, mu_s=[0.3], top_sliding_limit=0.1, workers=1)
+    cfg = tmp_path / "bad.toml"
+    for text, said in (("0", "must be a number > 0 (m), or inf for no limit, got 0.0"),
+                       ("-0.05", "must be a number > 0 (m), or inf for no limit, got -0.05"),
+                       ("nan", "must be a number > 0 (m), or inf for no limit, got nan"),
+                       ('"wide"', "must be a number, got 'wide'")):
+        cfg.write_text(STACK_CONFIG.format(design=f"top_sliding_limit = {text}"))
+        assert cli(["design", str(cfg)]) == 2
+        err = capsys.readouterr().err
+        assert f"design.top_sliding_limit: {said}" in err and len(err.strip().splitlines()) == 1
+    # the seed's model: the statue never slips on its pedestal, so there is nothing to limit
+    cfg.write_text("[statue]\nwidth = 0.4\nheight = 1.6\nmass = 200.0\n[pedestal]\nmass = 300.0\n"
+                   "friction = { static = 0.3 }\n[motions]\nfamily = \"sine\"\namplitude = [4.0]\nfrequency = [1.0]\n"
+                   "[design]\nmu_s = [0.3]\ntop_sliding_limit = 0.1\n")
+    assert cli(["design", str(cfg)]) == 2
+    assert "design.top_sliding_limit: applies on the stack engine" in capsys.readouterr().err
 
 
 def test_design_refuses_a_pedestal_the_stack_engine_cannot_draw():

@@ -165,6 +165,41 @@ def test_fragility_curves_of_an_ida_and_the_chart(runs):
     assert "θ/α" in ax.get_ylabel()
 
 
+def test_a_median_beyond_the_levels_run_is_flagged_and_the_levels_are_counted(runs):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from rocking.analyses.fragility import extrapolated, fragility_report_lines
+
+    curves = fragility_curves(runs, n_boot=50, seed=1)
+    beyond = extrapolated(curves)
+    np.testing.assert_array_equal(beyond, curves.im_median.values > 10.0)
+    # the fit can put a median beyond the highest level; here the pedestal's, as in the example
+    curves["im_median"].loc[{"system": "on pedestal", "mode": "fall"}] = 19.3
+    curves["beta"].loc[{"system": "on pedestal", "mode": "fall"}] = 0.85
+    lines = fragility_report_lines(curves, runs, free_time=3.0, charts=["f.png"])
+    row = next(line for line in lines if line.startswith("| on pedestal | falls |"))
+    assert "| 19.3 m/s² ⚠ extrapolated (above the highest level run, 10 m/s²) |" in row
+    assert lines[0] == "## PGA (every value in m/s²)" and not any(" g " in line or "(g)" in line for line in lines)
+    # every level with its counts, per system and failure mode
+    head = lines.index("| PGA (m/s²) | alone: θ/α ≥ 1 | alone: falls | on pedestal: θ/α ≥ 1 | on pedestal: falls |")
+    rows = lines[head + 2: head + 6]
+    assert [r.split(" | ")[0] for r in rows] == ["| 1", "| 3", "| 6", "| 10"]
+    fails = runs.fall.sel(system="on pedestal").sum("record").values
+    assert [r.split(" | ")[-1] for r in rows] == [f"{int(k)}/3 |" for k in fails]
+    ax = plot_fragility_curves(curves, "fall")
+    fit = [line.get_label() for line in ax.get_lines() if "median" in str(line.get_label())]
+    assert "on pedestal: median = 19.3 m/s² (extrapolated), β = 0.85" in fit
+    assert ax.get_xlim()[1] > 19.3  # the extrapolated median is on the chart, marked
+    assert any(line.get_marker() == "D" for line in ax.get_lines())
+    canvas = FigureCanvasAgg(ax.figure)
+    canvas.draw()
+    legend = ax.get_legend().get_window_extent(canvas.get_renderer())
+    assert legend.y0 >= ax.get_window_extent(canvas.get_renderer()).y1  # above the data, not on it
+
+
 def test_record_set_reads_folders_files_and_names(tmp_path, records):
     from rocking.io.records import resolve_record
 
@@ -227,7 +262,8 @@ def test_fragility_command(cli, tmp_path, capsys):
     out = tmp_path / "out"
     assert cli(["fragility", str(cfg), "--out", str(out), "--workers", "2"]) == 0
     printed = capsys.readouterr().out
-    assert "## PGA (m/s²)" in printed and "## PGV (m/s)" in printed and "statue alone" in printed
+    assert "## PGA (every value in m/s²)" in printed and "## PGV (every value in m/s)" in printed
+    assert "statue alone" in printed
     for im in ("pga", "pgv"):
         for name in (f"ida_{im}.nc", f"fragility_{im}.nc", f"fragility_{im}.csv", f"fragility_{im}_fall.png",
                      f"fragility_{im}_exceed.png"):

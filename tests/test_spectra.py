@@ -184,10 +184,41 @@ def test_spectrum_chart_and_island_bands(with_islands):
     assert all(len(b) == 3 and b[0].shape == b[1].shape == b[2].shape for b in bands)
     fig = plot_spectra(ds, title="test")
     visible = [ax for ax in fig.axes if ax.get_visible()]
-    assert [ax.get_title() for ax in visible] == ["cosine", "harmonic"]
+    assert [ax.get_title() for ax in visible] == ["one-cosine pulse", "harmonic motion"]
     assert visible[0].get_xlabel().startswith("frequency ratio")
+    # one y-range for every panel: the scanned amplitudes
+    assert {ax.get_ylim() for ax in visible} == {(0.0, float(ds.scan_amplitude_ratio.max()))}
+    # the legend in the strip above the panels, clear of the islands (of every axes)
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    legend = fig.subfigs[0].legends[0]
+    assert "safe island" in [t.get_text() for t in legend.get_texts()]
+    box = legend.get_window_extent(canvas.get_renderer())
+    assert not any(box.overlaps(ax.get_window_extent(canvas.get_renderer())) for ax in visible)
     ax = plot_spectra_overlay(ds)
     assert {t.get_text() for t in ax.get_legend().get_texts()} >= {"cosine", "harmonic", "safe island"}
+
+
+def test_a_gap_in_the_boundary_says_nothing_overturned_in_the_scanned_range(with_islands):
+    from rocking.analyses.spectra import spectrum_report
+    from rocking.viz.plots import plot_spectrum
+
+    _, ds = with_islands
+    gap = ds.copy(deep=True)
+    gap["amplitude_ratio"].loc[{"pulse": "cosine", "frequency_ratio": 4.0}] = np.nan
+    report = spectrum_report(gap, title="gap")
+    assert report.splitlines()[0] == "# gap"
+    assert "Block 0.4 m × 2 m, α = 0.197 rad, p = " in report and ", r = 0.942; engine: system." in report
+    row = next(line for line in report.splitlines() if line.startswith("| 4 |"))
+    assert row.split(" | ")[1] == "none up to 10"
+    assert "nan" not in report
+    ax = plot_spectrum(frequency_ratio=[1.0, 2.0, 4.0], amplitude_ratio=[1.2, 1.5, np.nan], scan_top=10.0)
+    grey = [p for p in ax.get_legend().get_patches() if p.get_label() == "no overturning up to 10"]
+    assert len(grey) == 1
+    assert [t.get_text() for t in ax.texts] == ["no overturning\nin the scanned range\n(up to 10)"]
+    assert ax.get_legend().get_bbox_to_anchor().y0 > ax.get_window_extent().y1 - 1  # above the axes
 
 
 def test_bad_inputs_are_refused():
@@ -345,6 +376,8 @@ def test_spectrum_command(tmp_path, capsys):
     rows = (out / "spectrum.csv").read_text().splitlines()
     assert rows[0].startswith("motion,frequency_ratio,amplitude_ratio") and len(rows) == 1 + 6
     assert (out / "spectrum.png").stat().st_size > 0
+    report = (out / "spectrum_report.md").read_text()
+    assert report.startswith("# Overturning spectra: block.toml") and "![overturning spectra](spectrum.png)" in report
     with xr.open_dataset(out / "spectrum.nc", engine="h5netcdf") as ds:
         api = overturning_spectrum(rk.System(statue=rk.Statue(width=0.4, height=2.0, mass=1.0)), ["sine", "cosine"],
                                    [1.0, 2.0, 3.0], amplitude_range=(1.01, 10.0), n_scan=20, options=OPTS, workers=1)

@@ -1,13 +1,15 @@
 """rocking — rigid blocks and statues rocking, sliding and overturning on a shaking floor.
 
-    >>> import rocking as rk
-    >>> statue = rk.Statue(width=1.0, height=4.0, mass=1.0, restitution=0.8)
-    >>> pedestal = rk.Pedestal(mass=1.0, friction=rk.Friction(static=0.4, kinetic=0.3))
-    >>> floor = rk.Harmonic(amplitude=6.75, frequency=1.2, cycles=30)
-    >>> alone = rk.simulate(rk.System(statue=statue), floor)
-    >>> on_pedestal = rk.simulate(rk.System(statue=statue, pedestal=pedestal), floor)
-    >>> alone.overturned, on_pedestal.overturned
-    (True, False)
+Examples
+--------
+>>> import rocking as rk
+>>> statue = rk.Statue(width=1.0, height=4.0, mass=1.0, restitution=0.8)
+>>> pedestal = rk.Pedestal(mass=1.0, friction=rk.Friction(static=0.4, kinetic=0.3))
+>>> floor = rk.Harmonic(amplitude=6.75, frequency=1.2, cycles=30)
+>>> alone = rk.simulate(rk.System(statue=statue), floor)
+>>> on_pedestal = rk.simulate(rk.System(statue=statue, pedestal=pedestal), floor)
+>>> alone.overturned, on_pedestal.overturned
+(True, False)
 """
 
 from .constants import STANDARD_GRAVITY as g

@@ -60,11 +60,16 @@ __all__ = [
     "plot_design",
     "ranking_rule",
     "run_undetermined",
+    "default_top_sliding_limit",
     "stack_of_system",
     "two_face_design",
 ]
 
 OBJECTIVES = ("mean", "median", "max")
+
+#: How the verdict's line opens when the limit on the statue's slide on the top face moves the
+#: recommendation.
+TOP_LIMIT_EXCLUDES = "The limit on the statue's slide on the pedestal's top face excludes"
 
 
 def motion_family(kind: str, amplitudes: Sequence[float], frequencies: Sequence[float], **kw: Any) -> dict[str, Any]:
@@ -143,11 +148,18 @@ def run_undetermined(ds) -> np.ndarray:
 
 
 def _mm(x: float) -> str:
-    return f"{1e3 * float(x):.1f} mm"
+    """A length given in m, in mm for reading: '0.05 mm', '12 mm', '303.7 mm' (never 5.17e-05)."""
+    from ..viz.plots import _mm_text
+
+    return _mm_text(1e3 * float(x))
 
 
-def _mm_limit(x: float) -> str:
-    return f"{1e3 * float(x):g} mm"
+def _mm_cell(x: float) -> str:
+    """The same, without the unit, for a table column headed '(mm)'."""
+    return _mm(x).removesuffix(" mm")
+
+
+_mm_limit = _mm
 
 
 def _names(names: Sequence[str], most: int = 6) -> str:
@@ -166,7 +178,8 @@ def ranking_rule(friction_scatter: float, objective: str = "mean", *, two_face: 
                 f"the edge of the block below and every run ends at rest; among the safe candidates that meet the "
                 f"limits, the smallest {objective} peak θ/α, the least free space on the floor, then the smaller "
                 f"floor μs, the lighter pedestal, the smaller top μs, the narrower pedestal; if no safe candidate "
-                f"meets the limits, the safe one needing the least free space, and nothing if none is safe")
+                f"meets the limits, the safe one needing the least free space (among those within the limit on the "
+                f"statue's slide on the top face, if any), and nothing if none is safe")
     return (f"safety first: a value is safe if the statue neither falls nor is left moving under any motion {band}; "
             f"among the safe values that meet the limits, μs·(1 + s) below the statue–pedestal face's friction, "
             f"then the smallest {objective} peak θ/α, the least free space, the smaller μs, the lighter pedestal; if no safe "
@@ -197,6 +210,9 @@ class DesignChoice:
     slid_off: np.ndarray | None = None
     #: the candidate axes after (μs, mass): ((name, values), …), e.g. mu_s_top, pedestal_width
     extra_axes: tuple[tuple[str, np.ndarray], ...] = ()
+    #: the candidate that would be recommended without the limit on the statue's slide on the top
+    #: face, when that limit is what excludes it (else None)
+    excluded_by_top_sliding: tuple[int, ...] | None = None
 
     @property
     def verdict(self) -> str:
@@ -223,9 +239,10 @@ class DesignChoice:
             "fewest_overturns_within_limits": int(self.fewest_overturns_within_limits),
         }
         for prefix, ij in (("recommended", self.recommended), ("nearest_safe", self.nearest_safe),
-                           ("fewest_overturns", self.fewest_overturns)):
+                           ("fewest_overturns", self.fewest_overturns),
+                           ("excluded_by_top_sliding", self.excluded_by_top_sliding)):
             out[f"{prefix}_mu_s"] = float(self.mu_s[ij[0]]) if ij else np.nan
-            out[f"{prefix}_mu_k"] = float(self.mu_k[ij[0]]) if ij else np.nan
+            out[f"{prefix}_mu_k"] = float(_clean(self.mu_k[ij[0]])) if ij else np.nan
             out[f"{prefix}_pedestal_mass"] = float(self.pedestal_mass[ij[1]]) if ij else np.nan
             out[f"{prefix}_clearance"] = float(self.clearance[ij].max()) if ij else np.nan
             for q, (axis, values) in enumerate(self.extra_axes):
@@ -262,6 +279,9 @@ def choose_design(
     slid_off: Any = None,
     slid_off_text: str = "a block slides to the edge of the one below",
     subject: str = "pedestal floor friction",
+    top_sliding: Any = None,
+    top_sliding_limit: Any = None,
+    top_sliding_limit_text: str | None = None,
 ) -> DesignChoice:
     """Rank the candidates of a friction design and write its verdict: the one place where the
     rules live (``rocking design``, :func:`friction_design` and the web page's sweep use it).
@@ -301,7 +321,17 @@ def choose_design(
         stops there). Not safe, like a fall, and named as ``slid_off_text``.
     subject : str
         What the first line recommends ("Recommended <subject>: …").
+    top_sliding : array like ``score``, optional
+        Two-face design: the statue's largest peak slide on the pedestal's top face over the
+        motions and levels, m.
+    top_sliding_limit : float or array broadcasting to ``score``, optional
+        The largest such slide a candidate may need, m (per candidate: it depends on the
+        pedestal's width); ``inf``: no limit. A limit like ``sliding_limit``.
+    top_sliding_limit_text : str, optional
+        The limit in words for the verdict (default: "statue's slide on the top face ≤ … mm").
 
+    Notes
+    -----
     Rules, in order (see ``docs/studies.md``):
 
     1. *Safe* (no fall, nothing undetermined, under any motion at any friction level) comes
@@ -336,7 +366,11 @@ def choose_design(
     miss_sliding = clear_max > sliding_limit if sliding_limit is not None else np.zeros(clear_max.shape, bool)
     miss_residual = residual > residual_limit if residual_limit is not None else np.zeros(clear_max.shape, bool)
     miss_top = top > top_friction_limit if top_friction_limit is not None else np.zeros(clear_max.shape, bool)
-    feasible = ~(miss_sliding | miss_residual | miss_top)
+    top_slide = np.zeros(clear_max.shape) if top_sliding is None else np.asarray(top_sliding, dtype=float)
+    top_room = np.broadcast_to(np.asarray(np.inf if top_sliding_limit is None else top_sliding_limit, dtype=float),
+                               clear_max.shape)
+    miss_top_slide = top_slide > top_room
+    feasible = ~(miss_sliding | miss_residual | miss_top | miss_top_slide)
     n_unsafe = falls.sum(axis=-1) + slid.sum(axis=-1) + unsure.sum(axis=-1)
     safe = n_unsafe == 0
     # the floor face's friction may turn out s higher: the concept is inverted as soon as the top
@@ -354,15 +388,24 @@ def choose_design(
 
     safe_pool = [c for c in cands if safe[c]]
     good = best([c for c in safe_pool if feasible[c]], tail)
-    nearest = best(safe_pool, lambda c: (bool(miss_residual[c] or miss_top[c]), float(clear_max[c]), *tail(c)))
+    # the free space on the floor is what the fallback gives up; a statue sliding towards the edge
+    # of its plinth is given up last of the limits
+    nearest = best(safe_pool, lambda c: (bool(miss_top_slide[c]), bool(miss_residual[c] or miss_top[c]),
+                                         float(clear_max[c]), *tail(c)))
+    # what would be recommended without the top-face limit, to say so when that limit moves it
+    within_others = ~(miss_sliding | miss_residual | miss_top)
+    loose = best([c for c in safe_pool if within_others[c]], tail)
+    if loose is None:
+        loose = best(safe_pool, lambda c: (bool(miss_residual[c] or miss_top[c]), float(clear_max[c]), *tail(c)))
     limited = [c for c in cands if feasible[c]]
     within = bool(limited)
     by_falls = (lambda c: (int(n_unsafe[c]), int(falls[c].sum() + slid[c].sum()), *tail(c)))
     fewest = best(limited, by_falls)
     if fewest is None and not safe_pool:  # nothing to build either way: the least bad candidate, named
-        fewest = best(cands, lambda c: (int(n_unsafe[c]), int(miss_sliding[c] + miss_residual[c] + miss_top[c]),
-                                        *by_falls(c)[1:]))
+        fewest = best(cands, lambda c: (int(n_unsafe[c]), int(miss_sliding[c] + miss_residual[c] + miss_top[c]
+                                                              + miss_top_slide[c]), *by_falls(c)[1:]))
     recommended = good if good is not None else nearest
+    excluded = loose if loose is not None and loose != recommended and miss_top_slide[loose] else None
 
     def name(ij: tuple[int, ...]) -> str:
         if describe is not None:
@@ -379,7 +422,13 @@ def choose_design(
             out.append(f"its residual sliding {_mm(residual[ij])} exceeds the {_mm_limit(residual_limit)} limit")
         if miss_top[ij]:
             out.append(f"the statue–pedestal face must supply μ = {top[ij]:.3g}, more than {top_friction_limit:.3g}")
+        if miss_top_slide[ij]:
+            out.append(top_slide_miss(ij))
         return out
+
+    def top_slide_miss(ij: tuple[int, ...]) -> str:
+        return (f"the statue slides {_mm(top_slide[ij])} on the pedestal's top face, more than the "
+                f"{_mm_limit(top_room[ij])} limit there")
 
     def outcome(ij: tuple[int, int]) -> str:
         fell = [m for m, f in zip(names, falls[ij]) if f]
@@ -409,21 +458,33 @@ def choose_design(
         limits.append(f"residual sliding ≤ {_mm_limit(residual_limit)}")
     if top_friction_limit is not None:
         limits.append(f"required statue–pedestal friction ≤ {top_friction_limit:.3g}")
+    if top_sliding_limit_text is not None:
+        limits.append(top_sliding_limit_text)
+    elif np.isfinite(top_room).any():
+        limits.append(f"statue's slide on the top face ≤ {_mm_limit(float(np.min(top_room)))}")
     limit_text = ", ".join(limits) if limits else "no limits"
+    excluded_line = (f"{TOP_LIMIT_EXCLUDES} {name(excluded)}, which "
+                     f"would otherwise be recommended: {top_slide_miss(excluded)}." if excluded is not None else None)
 
     lines: list[str] = []
     if good is not None:
         lines.append(f"Recommended {subject}: {name(good)}. The statue stands under {every} {band}, "
                      f"and the limits are met ({limit_text}).")
+        if excluded_line:
+            lines.append(excluded_line)
         lines.append(f"Free space the pedestal needs: {space(good)}.")
     else:
         if safe_pool:
             lines.append(f"No candidate met every requirement: none keeps the statue standing under every motion "
                          f"{band} and also meets the limits ({limit_text}).")
+            if excluded_line:
+                lines.append(excluded_line)
             other = [m for m in misses(nearest) if not m.startswith("the pedestal needs")]
             beyond = f", more than the {_mm_limit(sliding_limit)} limit" if miss_sliding[nearest] else ""
+            kept = (" among those that keep the statue's slide on the top face within its limit"
+                    if not miss_top_slide[nearest] and any(miss_top_slide[c] for c in safe_pool) else "")
             lines.append(f"Recommended, because not falling comes first: {name(nearest)}, the safe candidate that "
-                         f"needs the least free space: {space(nearest)}{beyond}"
+                         f"needs the least free space{kept}: {space(nearest)}{beyond}"
                          + "".join(f"; {m}" for m in other) + ".")
         else:
             how = "falls, or is left undetermined" if slid_off is None else \
@@ -462,7 +523,7 @@ def choose_design(
         motions=names, safe=safe, feasible=feasible, inverted=inverted, recommended=recommended,
         meets_every_requirement=good is not None, nearest_safe=nearest, fewest_overturns=fewest,
         fewest_overturns_within_limits=fewest is not None and within, lines=tuple(lines),
-        slid_off=None if slid_off is None else slid, extra_axes=extra,
+        slid_off=None if slid_off is None else slid, extra_axes=extra, excluded_by_top_sliding=excluded,
     )
 
 
@@ -490,6 +551,7 @@ def friction_design(
     mu_k_top: float | None = None,
     mu_k_top_ratio: float | None = None,
     pedestal_width: Sequence[float] | None = None,
+    top_sliding_limit: float | None = None,
 ):
     """Sweep the pedestal's floor friction (and mass) over a set of motions and recommend one.
 
@@ -530,9 +592,9 @@ def friction_design(
     options, workers, folder, fresh, chunk_size, progress
         As in :func:`rocking.analyses.store.run_stored`.
 
-    mu_s_top, mu_k_top, mu_k_top_ratio, pedestal_width : optional
-        The statue–pedestal face and the pedestal's width (m), swept on the stack engine
-        (:func:`two_face_design`).
+    mu_s_top, mu_k_top, mu_k_top_ratio, pedestal_width, top_sliding_limit : optional
+        The statue–pedestal face and the pedestal's width (m), swept on the stack engine, and the
+        limit on the statue's slide on that face (m; :func:`two_face_design`).
 
     Returns
     -------
@@ -561,11 +623,15 @@ def friction_design(
         return two_face_design(
             system, motions, mu_s=mu_s, mu_k=mu_k, mu_k_ratio=mu_k_ratio, pedestal_mass=pedestal_mass,
             mu_s_top=mu_s_top, mu_k_top=mu_k_top, mu_k_top_ratio=mu_k_top_ratio, pedestal_width=pedestal_width,
+            top_sliding_limit=top_sliding_limit,
             sliding_limit=sliding_limit, residual_limit=residual_limit, top_friction_limit=top_friction_limit,
             objective=objective, friction_scatter=friction_scatter, free_time=free_time, options=options,
             workers=workers, folder=folder, fresh=fresh, chunk_size=chunk_size, progress=progress)
     if mu_k_top is not None or mu_k_top_ratio is not None:
         raise ValueError("mu_k_top and mu_k_top_ratio need mu_s_top (the statue–pedestal face's μs)")
+    if top_sliding_limit is not None:
+        raise ValueError("top_sliding_limit needs the stack engine, where the statue may slip on the pedestal: "
+                         "give mu_s_top or pedestal_width too, or a Stack")
     if system.pedestal is None:
         raise ValueError("friction_design needs a system with a pedestal")
     motions = dict(motions)
@@ -747,12 +813,54 @@ def _kinetic(mus: np.ndarray, mu_k: float | None, ratio: float | None, base: Fri
     return float(ratio) * mus
 
 
+def _clean(values: Any) -> Any:
+    """Products like 0.8 × 0.3 as written for reading (0.24, not 0.24000000000000002); the runs
+    keep the exact products, so that a run equals the single simulation with ratio × μs."""
+    return np.round(values, 12)
+
+
 def _grid_values(values: Sequence[float], name: str, *, positive: bool) -> np.ndarray:
     arr = np.asarray(values, dtype=float)
     bad = arr.ndim != 1 or arr.size == 0 or np.any(~np.isfinite(arr)) or np.any(arr <= 0 if positive else arr < 0)
     if bad:
         raise ValueError(f"{name} must be {'positive' if positive else 'non-negative'} numbers, got {values!r}")
     return arr
+
+
+def _check_top_sliding_limit(value: Any) -> float | None:
+    """A given limit on the statue's slide on the top face (m): > 0, or inf for none."""
+    if value is None:
+        return None
+    ok = isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))
+    if not ok or not float(value) > 0:
+        raise ValueError(f"top_sliding_limit must be a number > 0 (m), or inf for no limit, got {value!r}")
+    return float(value)
+
+
+def default_top_sliding_limit(pedestal_width: Any, statue_width: float, statue_offset: float = 0.0) -> np.ndarray:
+    """Half the room on the pedestal's top face, m: 0.5·((pedestal width − statue width)/2 − |offset|),
+    per pedestal width (m). The statue's edge may travel half way to the pedestal's edge, on the
+    side where it stands nearer the edge (``statue_offset``, m, from the pedestal's centre)."""
+    room = 0.5 * (np.asarray(pedestal_width, dtype=float) - float(statue_width)) - abs(float(statue_offset))
+    if np.any(room <= 0):
+        w = float(np.asarray(pedestal_width, dtype=float).ravel()[np.argmin(np.ravel(room))])
+        raise ValueError(f"top_sliding_limit: its default, half the room on the pedestal's top face, needs room "
+                         f"there; a {w:g} m pedestal under a {statue_width:g} m statue (offset {statue_offset:g} m) "
+                         "leaves none: give top_sliding_limit (m)")
+    return 0.5 * room
+
+
+def top_sliding_limit_text(widths: Sequence[float], limits: Sequence[float], *, default: bool) -> str:
+    """The limit on the statue's slide on the top face in words (reports and verdicts)."""
+    limits = [float(v) for v in limits]
+    if not np.isfinite(limits).any():
+        return "no limit on the statue's slide on the top face (top_sliding_limit = inf)"
+    values = sorted({(float(w), v) for w, v in zip(widths, limits)})
+    if not default:
+        return f"statue's slide on the top face ≤ {_mm_limit(limits[0])}"
+    per = ", ".join(f"{_mm_limit(v)} on the {w:g} m pedestal" for w, v in values)
+    return (f"statue's slide on the top face ≤ half the room there, 0.5 × ((pedestal width − statue width)/2 − "
+            f"|offset|): {per}")
 
 
 #: The candidate dimensions of a two-face design, in order.
@@ -777,6 +885,15 @@ def face_work(floor_slide: float, top_slide: float, statue_rotation: float, pede
     return text
 
 
+def _after_recommendation(lines: Sequence[str]) -> int:
+    """Where the verdict's line on the working face goes: after the line that recommends (and the
+    top-face limit's line that follows it), or second when nothing is recommended."""
+    at = next((k for k, line in enumerate(lines) if line.startswith("Recommended")), 0) + 1
+    while at < len(lines) and lines[at].startswith(TOP_LIMIT_EXCLUDES):
+        at += 1
+    return at
+
+
 def two_face_design(
     system: System | Stack,
     motions: Mapping[str, Any],
@@ -792,6 +909,7 @@ def two_face_design(
     sliding_limit: float | None = None,
     residual_limit: float | None = None,
     top_friction_limit: float | None = None,
+    top_sliding_limit: float | None = None,
     objective: str = "mean",
     friction_scatter: float = DEFAULT_FRICTION_SCATTER,
     free_time: float = 60.0,
@@ -817,8 +935,11 @@ def two_face_design(
     where the engine stops: a fall risk, named as such) and every run ends at rest. Then the
     limits: ``sliding_limit`` and ``residual_limit`` on the pedestal's sliding on the floor (the
     free space it needs), ``top_friction_limit`` (if given) on the friction the top face must
-    supply. The verdict's second line says which face does the work for the recommended
-    candidate (:func:`face_work`).
+    supply, and ``top_sliding_limit`` on the statue's peak slide on the top face (by default half
+    the room there, per pedestal width: :func:`default_top_sliding_limit`). When that last limit
+    is what moves the recommendation, the verdict's second line says so and names the candidate
+    it excludes. The next line says which face does the work for the recommended candidate
+    (:func:`face_work`). The parameters not listed below are those of :func:`friction_design`.
 
     Parameters
     ----------
@@ -829,8 +950,10 @@ def two_face_design(
         Its μk, fixed (capped at μs) or as a ratio of μs; default the given top face's ratio.
     pedestal_width : sequence of float, optional
         m; default the pedestal's.
-    Others
-        As in :func:`friction_design`.
+    top_sliding_limit : float, optional
+        The largest peak slide of the statue on the pedestal's top face a candidate may need, m
+        (> 0; ``inf``: no limit). Default: half the room on the top face, 0.5·((pedestal width −
+        statue width)/2 − |offset|), for each candidate's own width.
 
     Returns
     -------
@@ -841,10 +964,12 @@ def two_face_design(
         the pedestal on the floor and the statue on the pedestal) and
         ``scatter_pedestal_rotation`` (rad); per candidate and motion ``slid_off`` and
         ``top_sliding`` (m, worst over the levels); per candidate ``slid_off_count``,
-        ``top_sliding_max`` and ``pedestal_rotation_max``. ``clearance`` is the floor face's
-        sliding. Attributes as in :func:`friction_design`, plus ``engine = "stack"``,
+        ``top_sliding_max`` and ``pedestal_rotation_max``; per width ``top_sliding_limit`` (m).
+        ``clearance`` is the floor face's sliding. Attributes as in :func:`friction_design`, plus ``engine = "stack"``,
         ``recommended_mu_s_top``, ``recommended_pedestal_width`` (and for ``nearest_safe_``,
-        ``fewest_overturns_``) and ``face_work`` (the clause of :func:`face_work`).
+        ``fewest_overturns_``, ``excluded_by_top_sliding_``), ``face_work`` (the clause of
+        :func:`face_work`), ``top_sliding_limit`` (the given limit, m; NaN: the default) and
+        ``top_sliding_limit_text``.
     """
     from .batch import specs_dataset
 
@@ -883,6 +1008,11 @@ def two_face_design(
             raise ValueError(f"{name} must be a number >= 0, got {v!r}")
     if not free_time >= 0:
         raise ValueError(f"free_time must be >= 0, got {free_time!r}")
+    given_top_limit = _check_top_sliding_limit(top_sliding_limit)
+    on_top = stack.blocks[1]
+    top_limits = (default_top_sliding_limit(widths, on_top.width, on_top.offset) if given_top_limit is None
+                  else np.full(widths.shape, given_top_limit))
+    top_limit_text = top_sliding_limit_text(widths, top_limits, default=given_top_limit is None)
 
     factors = friction_factors(scatter)
     nominal = factors.index(1.0)
@@ -975,6 +1105,8 @@ def two_face_design(
     ds["peak_rotation_ratio_max"] = (cand, rot_env.max(axis=-1))
     ds["peak_sliding_max"] = (cand, clearance.max(axis=-1), {"units": "m"})
     ds["top_sliding_max"] = (cand, top_env.max(axis=-1), {"units": "m"})
+    ds["top_sliding_limit"] = (("pedestal_width",), top_limits, {
+        "units": "m", "long_name": "largest peak slide of the statue on the pedestal's top face a candidate may need"})
     ds["pedestal_rotation_max"] = (cand, ped_rot.reshape(*shape_c, -1).max(axis=-1), {"units": "rad"})
     ds["residual_sliding_max"] = (cand, resid_max, {"units": "m"})
     ds["required_top_friction_max"] = (cand, top_max, {
@@ -998,6 +1130,8 @@ def two_face_design(
         slid_off_text=(f"the {stack.names[1]} slides to the edge of the {below}" if stack.n == 2
                        else "a block slides to the edge of the one below"),
         subject="pedestal faces",
+        top_sliding=top_env.max(axis=-1), top_sliding_limit=top_limits,
+        top_sliding_limit_text=top_limit_text if np.isfinite(top_limits).any() else None,
     )
     work = ""
     shown = choice.recommended if choice.recommended is not None else choice.fewest_overturns
@@ -1008,11 +1142,13 @@ def two_face_design(
         which = "the recommended design" if choice.recommended is not None else "the candidate with the fewest falls"
         levels = "motions and friction levels" if len(factors) > 1 else "motions"
         lines = list(choice.lines)
-        lines.insert(1, f"Which face does the work, for {which} (largest over the {levels}): {work}.")
+        lines.insert(_after_recommendation(lines),
+                     f"Which face does the work, for {which} (largest over the {levels}): {work}.")
         choice = dataclasses.replace(choice, lines=tuple(lines))
     ds["safe"] = (cand, choice.safe, {
         "long_name": "nothing falls or slides off, and every run ends at rest, under every motion at every level"})
-    ds["feasible"] = (cand, choice.feasible, {"long_name": "meets the sliding, residual and top-friction limits"})
+    ds["feasible"] = (cand, choice.feasible, {
+        "long_name": "meets the sliding, residual, top-friction and top-sliding limits"})
     ds["inverted"] = (("mu_s",), choice.inverted, {
         "long_name": "floor-face μs·(1 + s) at or above top_friction_limit"})
     ds["score"] = (cand, score, {"long_name": f"{objective} peak θ/α over the motions"})
@@ -1029,6 +1165,8 @@ def two_face_design(
         sliding_limit=np.nan if sliding_limit is None else float(sliding_limit),
         residual_limit=np.nan if residual_limit is None else float(residual_limit),
         top_friction_limit=np.nan if top_friction_limit is None else float(top_friction_limit),
+        top_sliding_limit=np.nan if given_top_limit is None else given_top_limit,
+        top_sliding_limit_text=top_limit_text,
         friction_scatter=scatter,
         free_time=float(free_time),
         gravity=float(options.gravity),
@@ -1052,7 +1190,7 @@ CANDIDATE_COLUMNS = (
 
 
 #: The columns a two-face design (:func:`two_face_design`) adds.
-TWO_FACE_COLUMNS = ("mu_k_top", "slid_off_count", "top_sliding_max", "pedestal_rotation_max")
+TWO_FACE_COLUMNS = ("mu_k_top", "slid_off_count", "top_sliding_max", "top_sliding_limit", "pedestal_rotation_max")
 
 
 def _candidate_dims(ds) -> tuple[str, ...]:
@@ -1067,6 +1205,9 @@ def candidate_table(ds):
     ``peak_sliding_max`` is the free space the pedestal needs (m)."""
     columns = list(CANDIDATE_COLUMNS) + (list(TWO_FACE_COLUMNS) if "mu_s_top" in ds.dims else [])
     table = ds[columns].to_dataframe().reset_index()
+    for column in ("mu_k", "mu_k_top"):
+        if column in table:
+            table[column] = _clean(table[column])
     return table[[*_candidate_dims(ds), *columns]]
 
 
@@ -1113,7 +1254,7 @@ def design_report(ds, *, title: str = "Friction design", chart: str | None = "de
                   f"The largest peak sliding of the pedestal under each motion, "
                   + (f"over the friction levels {_levels_text(factors, [True] * len(factors))}" if len(factors) > 1
                      else "at the nominal friction")
-                  + f". Overall: **{1e3 * float(sel.clearance.max()):.1f} mm**.",
+                  + f". Overall: **{_mm(float(sel.clearance.max()))}**.",
                   "", "| motion | free space (mm) | statue |", "|---|---|---|"]
         for k, motion in enumerate(ds.motion.values):
             over = sel.scatter_overturned.values[k]
@@ -1124,7 +1265,7 @@ def design_report(ds, *, title: str = "Friction design", chart: str | None = "de
                 state = f"undetermined at {_levels_text(factors, unsure)} (still moving at the end, or the run stopped)"
             else:
                 state = "stands"
-            lines.append(f"| {motion} | {1e3 * float(sel.clearance.values[k]):.1f} | {state} |")
+            lines.append(f"| {motion} | {_mm_cell(float(sel.clearance.values[k]))} | {state} |")
         lines.append("")
     lines += ["## Inputs and rules", ""]
     if "mu_s_top" in ds.dims:
@@ -1150,6 +1291,10 @@ def design_report(ds, *, title: str = "Friction design", chart: str | None = "de
         limits.append(f"residual sliding ≤ {1e3 * a['residual_limit']:.0f} mm")
     if math.isfinite(a["top_friction_limit"]):
         limits.append(f"required statue–pedestal friction ≤ {a['top_friction_limit']:.3g}")
+    if "top_sliding_limit_text" in a:
+        rule = "" if math.isfinite(a["top_sliding_limit"]) or "inf" in a["top_sliding_limit_text"] else \
+            " (the default: design.top_sliding_limit not given)"
+        limits.append(a["top_sliding_limit_text"] + rule)
     lines.append(f"Limits: {', '.join(limits) if limits else 'none'}.")
     lines.append(f"Ranking: {ranking_rule(s, a['objective'], two_face='mu_s_top' in ds.dims)} (docs/studies.md).")
     if "mu_s_top" in ds.dims:
@@ -1168,8 +1313,8 @@ def design_report(ds, *, title: str = "Friction design", chart: str | None = "de
             f"| {_fmt(row['mu_s'])}{mark}{warn} | {_fmt(row['mu_k'])} | {_fmt(row['pedestal_mass'])} | "
             f"{_fmt(bool(row['safe']))} | {int(row['overturn_count'])}/{n_mot} | "
             f"{int(row['undetermined_count'])}/{n_mot} | {_fmt(row['peak_rotation_ratio_mean'])} | "
-            f"{_fmt(row['peak_rotation_ratio_max'])} | {_fmt(1e3 * row['peak_sliding_max'], 4)} | "
-            f"{_fmt(1e3 * row['residual_sliding_max'], 4)} | {_fmt(row['required_top_friction_max'])} | "
+            f"{_fmt(row['peak_rotation_ratio_max'])} | {_mm_cell(row['peak_sliding_max'])} | "
+            f"{_mm_cell(row['residual_sliding_max'])} | {_fmt(row['required_top_friction_max'])} | "
             f"{_fmt(bool(row['feasible']))} |"
         )
     lines += ["", "⟵ recommended; ⚠ μs·(1 + s) at or above the statue–pedestal face's friction (inverts the concept). "
@@ -1193,13 +1338,15 @@ def _faces_per_motion(ds, at: Mapping[str, float], what: str) -> list[str]:
     levels = (f"over the friction levels {_levels_text(factors, [True] * len(factors))}" if len(factors) > 1
               else "at the nominal friction")
     below, above = (ds.attrs.get("blocks", "pedestal\nstatue").split("\n") + ["statue"])[:2]
+    room = float(sel.top_sliding_limit) if "top_sliding_limit" in sel else math.inf
+    room_text = f", limit {_mm_limit(room)}" if math.isfinite(room) else ""
     out = [f"## Which face does the work, per motion, for {what} (floor μs = {at['mu_s']:.3g}, top μs = "
            f"{_top_text(at['mu_s_top'])}, pedestal {at['pedestal_mass']:g} kg, {at['pedestal_width']:g} m wide)", "",
            f"The largest peak sliding of the {below} on the floor (the free space it needs) and of the {above} on "
            f"the {below}'s top face under each motion, {levels}; the statue's peak θ/α where it stands. Overall: "
-           f"**{1e3 * float(sel.clearance.max()):.1f} mm** on the floor, **{1e3 * float(sel.top_sliding.max()):.1f} mm** "
+           f"**{_mm(float(sel.clearance.max()))}** on the floor, **{_mm(float(sel.top_sliding.max()))}** "
            "on the top face.", "",
-           "| motion | floor face (mm) | top face (mm) | statue peak θ/α | pedestal rocks | statue |",
+           f"| motion | floor face (mm) | top face (mm{room_text}) | statue peak θ/α | pedestal rocks | statue |",
            "|---|---|---|---|---|---|"]
     for k, motion in enumerate(ds.motion.values):
         over = sel.scatter_overturned.values[k]
@@ -1215,8 +1362,10 @@ def _faces_per_motion(ds, at: Mapping[str, float], what: str) -> list[str]:
             state = "stands"
         rot = sel.scatter_peak_rotation_over_alpha.values[k]
         rocks = "yes" if float(sel.scatter_pedestal_rotation.values[k].max()) > 0 else "no"
-        out.append(f"| {motion} | {1e3 * float(sel.clearance.values[k]):.1f} | "
-                   f"{1e3 * float(sel.top_sliding.values[k]):.1f} | "
+        on_top = float(sel.top_sliding.values[k])
+        over_room = " ⚠ over the limit" if on_top > room else ""
+        out.append(f"| {motion} | {_mm_cell(float(sel.clearance.values[k]))} | "
+                   f"{_mm_cell(on_top)}{over_room} | "
                    f"{_fmt(float(rot[~over].max())) if (~over).any() else '–'} | {rocks} | {state} |")
     return out + [""]
 
@@ -1234,9 +1383,9 @@ def _two_face_inputs(ds) -> list[str]:
 def _two_face_candidates(ds, n_mot: int) -> list[str]:
     out = ["", "## Candidates", "",
            "| floor μs | μk | top μs | top μk | pedestal mass (kg) | width (m) | safe | falls | slides off | "
-           "undetermined | peak θ/α mean | peak θ/α max | floor slide (mm) | top slide (mm) | residual (mm) | "
-           "required top μ | meets limits |",
-           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+           "undetermined | peak θ/α mean | peak θ/α max | floor slide (mm) | top slide (mm) | top limit (mm) | "
+           "residual (mm) | required top μ | meets limits |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for _, row in candidate_table(ds).iterrows():
         mark = " ⟵" if row["recommended"] else ""
         out.append(
@@ -1244,57 +1393,88 @@ def _two_face_candidates(ds, n_mot: int) -> list[str]:
             f"{_top_text(row['mu_k_top'])} | {_fmt(row['pedestal_mass'])} | {_fmt(row['pedestal_width'])} | "
             f"{_fmt(bool(row['safe']))} | {int(row['overturn_count'])}/{n_mot} | {int(row['slid_off_count'])}/{n_mot} | "
             f"{int(row['undetermined_count'])}/{n_mot} | {_fmt(row['peak_rotation_ratio_mean'])} | "
-            f"{_fmt(row['peak_rotation_ratio_max'])} | {_fmt(1e3 * row['peak_sliding_max'], 4)} | "
-            f"{_fmt(1e3 * row['top_sliding_max'], 4)} | {_fmt(1e3 * row['residual_sliding_max'], 4)} | "
+            f"{_fmt(row['peak_rotation_ratio_max'])} | {_mm_cell(row['peak_sliding_max'])} | "
+            f"{_mm_cell(row['top_sliding_max'])} | {_mm_cell(row['top_sliding_limit'])} | "
+            f"{_mm_cell(row['residual_sliding_max'])} | "
             f"{_fmt(row['required_top_friction_max'])} | {_fmt(bool(row['feasible']))} |")
     return out + ["", "⟵ recommended. Safe: under every motion at every friction level no block falls, none slides to "
                   "the edge of the block below (where the stack engine stops: a fall risk), and every run ends at "
                   "rest. An overturn counts as θ/α = π/(2α) in the statistics of the peak rotation. The floor slide "
-                  "is the free space the pedestal needs; the top slide is the statue's on the pedestal; the required "
+                  "is the free space the pedestal needs; the top slide is the statue's on the pedestal, within the top "
+                  "limit for the candidate to meet the limits; the required "
                   "top friction is the largest |F|/N the top face needed over the runs nothing fell."]
 
 
-def plot_design(ds, *, figsize_per_panel: tuple[float, float] = (6.4, 3.6)):
-    """The design chart (one panel per pedestal mass; for a two-face design per pedestal mass,
-    width and top-face μs): peak θ/α, overturn rate and peak sliding (the worst over the friction
-    levels of the scatter) against μs, with tan α, the sliding limit, the recommended candidate
-    and its scatter band [μs·(1 − s), μs·(1 + s)] marked; a two-face design also shows the statue's
-    sliding on the top face and counts slides to the edge with the falls. Returns the Figure."""
+def plot_design(ds, *, panel_size: tuple[float, float] = (5.0, 4.4)):
+    """The design chart: per candidate panel, three axes against the floor μs (peak θ/α, the rate
+    of falls, the peak sliding in mm; the worst over the friction levels of the scatter), with
+    tan α, the limits, the recommended candidate and its scatter band [μs·(1 − s), μs·(1 + s)]
+    marked, and one legend in a strip above the panels.
+
+    A floor-face design has a panel per pedestal mass. A two-face design has a row per top-face
+    μs (and mass) and a column per pedestal width, on shared axes; it also draws the statue's
+    slide on the top face with its limit (per width) and counts slides to the edge with the falls.
+    Returns the Figure."""
     from matplotlib.figure import Figure
 
     from ..viz.plots import plot_design_chart
 
     two = "mu_s_top" in ds.dims
-    panels = [{"pedestal_mass": m} for m in ds.pedestal_mass.values]
+    masses = ds.pedestal_mass.values
+    rows = [{"pedestal_mass": m} for m in masses]
+    cols = [{}]
     if two:
-        panels = [{"pedestal_mass": m, "pedestal_width": w, "mu_s_top": t} for m in ds.pedestal_mass.values
-                  for w in ds.pedestal_width.values for t in ds.mu_s_top.values]
-    fig = Figure(figsize=(figsize_per_panel[0], figsize_per_panel[1] * len(panels)), layout="constrained")
-    axes = fig.subplots(len(panels), 1, squeeze=False)[:, 0]
+        rows = [{"pedestal_mass": m, "mu_s_top": t} for m in masses for t in ds.mu_s_top.values]
+        cols = [{"pedestal_width": w} for w in ds.pedestal_width.values]
+    fig = Figure(figsize=(panel_size[0] * len(cols) + 0.8, panel_size[1] * len(rows) + 1.4), layout="constrained")
+    strip, grid = fig.subfigures(2, 1, height_ratios=(1.4, panel_size[1] * len(rows)))
+    cells = np.atleast_2d(grid.subfigures(len(rows), len(cols), squeeze=False))
     stat = ds.attrs.get("objective", "mean")
-    for ax, at in zip(axes, panels):
-        sub = ds.sel(**at)
-        rec = sub.recommended.values
-        rate = sub.overturn_rate.values
-        if two:
-            rate = (sub.falls | sub.slid_off).mean("motion").values
-        plot_design_chart(sub.mu_s.values, sub[f"peak_rotation_ratio_{stat}"].values, sub.peak_sliding_max.values,
-                          rate, ax=ax, tan_alpha=ds.attrs.get("tan_alpha"),
-                          recommended=float(sub.mu_s.values[rec][0]) if rec.any() else None,
-                          friction_scatter=float(ds.attrs.get("friction_scatter", 0.0)),
-                          top_sliding=sub.top_sliding_max.values if two else None,
-                          rate_label="rate of falls and slides off the edge" if two else "overturn rate")
-        limit = ds.attrs.get("sliding_limit", np.nan)
-        if np.isfinite(limit):
-            ax.right_ax.axhline(1e3 * limit, color="0.2", lw=0.9, ls="-.")
-            ax.right_ax.annotate("sliding limit", (float(sub.mu_s.values.max()), 1e3 * limit), xytext=(-3, 3),
-                                 textcoords="offset points", ha="right", fontsize=7, color="0.2")
-            top = max(ax.right_ax.get_ylim()[1], 1.15e3 * limit)
-            ax.right_ax.set_ylim(0.0, top)
-        ax.set_ylabel(f"{stat} peak |θ|/α, {'fall' if two else 'overturn'} rate (–)")
-        note = "" if ds.attrs.get("meets_every_requirement", 1) else " (no candidate met every requirement)"
-        head = f"pedestal mass {at['pedestal_mass']:g} kg"
-        if two:
-            head += f", width {at['pedestal_width']:g} m, top face μs {_top_text(float(at['mu_s_top']))}"
-        ax.set_title(head + note, fontsize=9)
+    limit = ds.attrs.get("sliding_limit", np.nan)
+    slides = [ds.peak_sliding_max.values, [limit]] + ([ds.top_sliding_max.values, ds.top_sliding_limit.values]
+                                                     if two else [])
+    finite = np.concatenate([np.ravel(np.asarray(v, dtype=float)) for v in slides])
+    finite = finite[np.isfinite(finite)]
+    sliding_max = 1.1e3 * float(finite.max()) if finite.size and finite.max() > 0 else 1.0
+    rot_axes, handles = [], {}
+    for r, row in enumerate(rows):
+        for c, col in enumerate(cols):
+            at = {**row, **col}
+            sub = ds.sel(**at)
+            rec = sub.recommended.values
+            rate = (sub.falls | sub.slid_off).mean("motion").values if two else sub.overturn_rate.values
+            axes = cells[r, c].subplots(3, 1, sharex=True, height_ratios=(1.5, 0.75, 1.75))
+            ax = plot_design_chart(
+                sub.mu_s.values, sub[f"peak_rotation_ratio_{stat}"].values, sub.peak_sliding_max.values, rate,
+                axes=axes, legend=False, tan_alpha=ds.attrs.get("tan_alpha"),
+                recommended=float(sub.mu_s.values[rec][0]) if rec.any() else None,
+                friction_scatter=float(ds.attrs.get("friction_scatter", 0.0)),
+                top_sliding=sub.top_sliding_max.values if two else None,
+                rate_label="fall rate" if two else "overturn rate", rotation_label=f"{stat} peak\n|θ|/α (–)",
+                sliding_limit=limit if np.isfinite(limit) else None,
+                top_sliding_limit=float(sub.top_sliding_limit) if two else None, sliding_max=sliding_max)
+            rot_axes.append(ax)
+            for handle in ax.design_handles:  # every entry of every panel, once
+                handles.setdefault(handle.get_label(), handle)
+            if c > 0:  # the rows share their y axes: one set of labels, on the left
+                for a in (ax, ax.rate_ax, ax.sliding_ax):
+                    a.set_ylabel("")
+            if r < len(rows) - 1:
+                ax.sliding_ax.set_xlabel("")
+            head = f"pedestal mass {at['pedestal_mass']:g} kg" if len(masses) > 1 or not two else ""
+            if two:
+                head = ", ".join(filter(None, (f"top face μs {_top_text(float(at['mu_s_top']))}",
+                                               f"width {at['pedestal_width']:g} m", head)))
+            cells[r, c].suptitle(head, fontsize=9)
+            cells[r, c].align_ylabels([ax, ax.rate_ax, ax.sliding_ax])
+    for ax in rot_axes[1:]:
+        first = rot_axes[0]
+        for mine, theirs in ((ax, first), (ax.rate_ax, first.rate_ax), (ax.sliding_ax, first.sliding_ax)):
+            mine.sharey(theirs)
+    note = "" if ds.attrs.get("meets_every_requirement", 1) else "no candidate met every requirement\n"
+    what = "both faces of the pedestal" if two else "the pedestal's floor friction"
+    strip.suptitle(f"Friction design of {what}\n{note}each point: the worst over the friction levels of the scatter",
+                   fontsize=9.5)
+    strip.legend(handles=list(handles.values()), loc="lower center", ncol=min(len(handles), 5 if len(cols) > 1 else 3),
+                 fontsize=7.5, frameon=False)
     return fig

@@ -40,6 +40,8 @@ __all__ = [
     "ida",
     "load_record_set",
     "lognormal_probability",
+    "extrapolated",
+    "fragility_report_lines",
     "plot_fragility_curves",
 ]
 
@@ -489,13 +491,25 @@ def fragility_curves(
 
 
 def plot_fragility_curves(curves, mode: str = "fall", ax=None, *, title: str | None = None):
-    """Every system's observed fractions, fitted curve and band for one failure mode on one chart."""
+    """Every system's observed fractions, fitted curve and band for one failure mode on one chart,
+    with the legend in a strip above the axes; a median beyond the highest level run is marked
+    as extrapolated and the range beyond that level greyed."""
     from ..viz.plots import plot_fragility
 
     colors = ["#c0392b", "#1f77b4", "#2ca02c", "#8e44ad", "#ff7f0e"]
     im_name = curves.attrs.get("im_name", "pga").upper()
     units = curves.attrs.get("im_units", "")
     level = int(round(100 * float(curves.attrs.get("confidence", 0.9))))
+    tested = float(curves.level.values.max())
+    medians = curves.im_median.sel(mode=mode).values
+    medians = medians[np.isfinite(medians)]
+    # the extrapolated medians on the chart, unless absurdly far out (then the label says where)
+    x_max = max(float(curves.im.values.max()), min(1.15 * float(medians.max()), 3.0 * tested) if medians.size else 0.0)
+    x = np.linspace(0.0, x_max, 400)
+    if ax is None:  # wide enough for a legend column per system above the axes
+        from matplotlib.figure import Figure
+
+        ax = Figure(figsize=(7.6, 4.6), layout="constrained").add_subplot()
     for i, label in enumerate(curves.system.values.tolist()):
         c = curves.sel(system=label, mode=mode)
         color = colors[i % len(colors)]
@@ -507,7 +521,8 @@ def plot_fragility_curves(curves, mode: str = "fall", ax=None, *, title: str | N
         before = set(map(id, ax.collections)) if ax is not None else set()
         lines_before = set(map(id, ax.get_lines())) if ax is not None else set()
         ax = plot_fragility(curves.level.values, c.fraction.values, median, beta, ax=ax, label=label, band=band,
-                            im_label=f"{im_name} ({units})", color=color)
+                            im_label=f"{im_name} ({units})", color=color, tested_max=tested, units=units,
+                            legend=False)
         for coll in ax.collections:  # the band just drawn: in the system's colour
             if id(coll) not in before and coll.get_label() == "confidence band":
                 coll.set_facecolor(color)
@@ -519,12 +534,65 @@ def plot_fragility_curves(curves, mode: str = "fall", ax=None, *, title: str | N
             if median is None and line.get_label() == "observed fraction":  # plot_fragility's name for it
                 line.set_label(f"{label}: observed (no fit)")
             elif median is not None and "median =" in str(line.get_label()):
-                # every system's curve over the same range: the IM grid of the fit
-                x = np.concatenate(([0.0], curves.im.values))
+                # every system's curve over the same range
                 line.set_data(x, lognormal_probability(x, median, beta))
     ax.set_ylabel(f"probability of {_MODE_TEXT.get(mode, mode)} (–)")
-    ax.set_xlim(0.0, float(curves.im.values.max()))
-    ax.legend(loc="lower right", fontsize=7.5, framealpha=0.9)
+    ax.set_xlim(0.0, x_max)
+    ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.02), ncol=2, fontsize=7.5, frameon=False, borderaxespad=0.0)
     if title:
-        ax.set_title(title, fontsize=9)
+        ax.figure.suptitle(title, fontsize=9)
     return ax
+
+
+def extrapolated(curves) -> np.ndarray:
+    """(system, mode): the fitted median lies above the highest level run (an extrapolation)."""
+    return np.asarray(curves.im_median.values > float(curves.level.values.max()))
+
+
+def fragility_report_lines(curves, runs, *, free_time: float, charts: Sequence[str] = ()) -> list[str]:
+    """The report's section of one intensity measure: the fits (every number with its unit, the
+    medians beyond the highest level run flagged), the levels run with the failures counted at
+    each, the warnings, and the charts."""
+    im = str(curves.attrs.get("im_name", "pga"))
+    unit = curves.attrs["im_units"]
+    top = float(curves.level.values.max())
+    beyond = extrapolated(curves)
+    systems = curves.system.values.tolist()
+    lines = [f"## {im.upper()} (every value in {unit})", "",
+             f"| system | failure | median {im.upper()} | interval | β |", "|---|---|---|---|---|"]
+    for s, label in enumerate(systems):
+        for m, mode in enumerate(MODES):
+            c = curves.sel(system=label, mode=mode)
+            med, lo, hi, beta = (float(c[k]) for k in ("im_median", "im_median_lower", "im_median_upper", "beta"))
+            fit = f"{med:.3g} {unit}" if math.isfinite(med) else "no fit (no failure at any level)"
+            if beyond[s, m]:
+                fit += f" ⚠ extrapolated (above the highest level run, {top:.3g} {unit})"
+            interval = f"{lo:.3g} – {hi:.3g} {unit}" if math.isfinite(lo) else "–"
+            lines.append(f"| {label} | {_REPORT_MODE[mode]} | {fit} | {interval} | "
+                         f"{f'{beta:.3g}' if math.isfinite(beta) else '–'} |")
+    lines.append("")
+    if beyond.any():
+        lines += [f"⚠ An extrapolated median lies beyond every level run: the fit reaches it from the failures "
+                  f"below {top:.3g} {unit}, so it (and its interval) rests on the lognormal shape, not on runs. "
+                  f"Run higher levels to check it.", ""]
+    heads = [f"{label}: {_REPORT_MODE[mode]}" for label in systems for mode in MODES]
+    lines += [f"Failures per level ({curves.attrs.get('n_records', '')} records at each):", "",
+              f"| {im.upper()} ({unit}) | " + " | ".join(heads) + " |", "|---|" + "---|" * len(heads)]
+    for k, level in enumerate(curves.level.values):
+        cells = [f"{int(curves.n_failed.values[s, m, k])}/{int(curves.n_runs.values[s, m, k])}"
+                 for s in range(len(systems)) for m in range(len(MODES))]
+        lines.append(f"| {level:.3g} | " + " | ".join(cells) + " |")
+    lines.append("")
+    undetermined = int(runs.undetermined.sum())
+    if undetermined:
+        lines += [f"**{undetermined} run(s) were still moving {free_time:g} s after their record ended: "
+                  "undetermined, counted as falls.** Raise fragility.free_time to decide them.", ""]
+    slid = int(runs.slid_off.sum()) if "slid_off" in runs else 0
+    if slid:
+        lines += [f"**{slid} run(s): a block slid to the edge of the one below, where the stack engine stops: "
+                  "counted as falls (a fall risk).**", ""]
+    lines += [f"![{im} {name.split('_')[-1].removesuffix('.png')}]({name})" for name in charts]
+    return lines + [""]
+
+
+_REPORT_MODE = {"exceed": "θ/α ≥ 1", "fall": "falls"}

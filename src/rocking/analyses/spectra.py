@@ -56,8 +56,10 @@ __all__ = [
     "overturning_spectrum",
     "spectrum_motion",
     "island_bands",
+    "block_text",
     "plot_spectra",
     "plot_spectra_overlay",
+    "spectrum_report",
 ]
 
 SHAPES = ("sine", "cosine", "ricker", "harmonic")
@@ -451,6 +453,7 @@ def overturning_spectrum(
             "p": p,
             "gravity": g,
             "restitution": _restitution(system),
+            **_block_size(system),
             "pedestal": int(system.n > 1) if isinstance(system, Stack) else int(system.pedestal is not None),
             "engine": "stack" if isinstance(system, Stack) else "system",
             "criterion": criterion,
@@ -461,6 +464,12 @@ def overturning_spectrum(
         },
     )
     return ds
+
+
+def _block_size(system: System | Stack) -> dict[str, float]:
+    """The width and height (m) of the block whose spectrum this is: the statue, or the top block."""
+    block = system.blocks[-1] if isinstance(system, Stack) else system.statue
+    return {"block_width": float(block.width), "block_height": float(block.height)}
 
 
 def _restitution(system: System | Stack) -> float:
@@ -489,9 +498,21 @@ def island_bands(ds, pulse: str) -> list[tuple[np.ndarray, np.ndarray, np.ndarra
 _COLORS = {"sine": "#c0392b", "cosine": "#1f77b4", "ricker": "#2ca02c", "harmonic": "#8e44ad"}
 
 
+def block_text(ds) -> str:
+    """The block of a spectrum in words: its size, α, p and r (from the Dataset's attributes)."""
+    a = ds.attrs
+    size = (f"block {a['block_width']:g} m × {a['block_height']:g} m, " if "block_width" in a else "")
+    r = a.get("restitution", math.nan)
+    r_text = f"r = {r:.3g}" if math.isfinite(r) else "r by Housner's rule"
+    where = " on a pedestal" if a.get("pedestal") else ""
+    return f"{size}α = {a['alpha']:.3f} rad, p = {a['p']:.3f} 1/s, {r_text}{where}"
+
+
 def plot_spectra(ds, *, title: str | None = None, panel_size: tuple[float, float] = (4.6, 3.4)):
-    """One panel per motion (as in Zhang & Makris 2001): the boundary, the overturn region shaded
-    and the safe islands hatched. Returns the matplotlib Figure."""
+    """One panel per motion (as in Zhang & Makris 2001), all on one y-range (the scanned
+    a_p/(g tan α)): the boundary, the overturn region shaded, the safe islands hatched, and the
+    frequencies where nothing overturned in the scanned range greyed and said so. One legend, in a
+    strip above the panels. Returns the matplotlib Figure."""
     from matplotlib.figure import Figure
 
     from ..viz.plots import plot_spectrum
@@ -499,28 +520,89 @@ def plot_spectra(ds, *, title: str | None = None, panel_size: tuple[float, float
     pulses = ds.pulse.values.tolist()
     cols = 1 if len(pulses) == 1 else 2
     rows = math.ceil(len(pulses) / cols)
-    fig = Figure(figsize=(panel_size[0] * cols, panel_size[1] * rows), layout="constrained")
-    axes = fig.subplots(rows, cols, squeeze=False).ravel()
+    fig = Figure(figsize=(panel_size[0] * cols, panel_size[1] * rows + 0.9), layout="constrained")
+    strip, grid = fig.subfigures(2, 1, height_ratios=(0.9, panel_size[1] * rows))
+    axes = grid.subplots(rows, cols, squeeze=False, sharex=True, sharey=True).ravel()
     top = float(ds.scan_amplitude_ratio.max())
+    handles: dict[str, Any] = {}
     for ax, pulse in zip(axes, pulses):
-        amp = ds.amplitude_ratio.sel(pulse=pulse).values
-        upper = ds.island_upper.sel(pulse=pulse).values
-        finite = np.concatenate((amp[np.isfinite(amp)], np.minimum(upper[~np.isnan(upper)], top)))
         plot_spectrum(
             frequency_ratio=ds.frequency_ratio.values,
-            amplitude_ratio=amp,
+            amplitude_ratio=ds.amplitude_ratio.sel(pulse=pulse).values,
             safe_islands=island_bands(ds, pulse) or None,
             label="smallest overturning amplitude",
-            color=_COLORS.get(pulse),
-            ymax=min(top, 1.2 * float(finite.max())) if finite.size else top,
+            ymax=top,
+            scan_top=top,
+            legend=False,
             ax=ax,
         )
-        ax.set_title(f"{pulse}", fontsize=9)
+        for handle in ax.spectrum_handles:
+            handles.setdefault(handle.get_label(), handle)
+        ax.set_title(_MOTION_TITLES.get(pulse, pulse), fontsize=9)
+        ax.label_outer()
     for ax in axes[len(pulses):]:
         ax.set_visible(False)
-    if title:
-        fig.suptitle(title, fontsize=10)
+    strip.suptitle(title or f"Overturning spectra: {block_text(ds)}", fontsize=10)
+    strip.legend(handles=list(handles.values()), loc="lower center", ncol=min(len(handles), 3), fontsize=7.5,
+                 frameon=False)
     return fig
+
+
+_MOTION_TITLES = {"sine": "one-sine pulse", "cosine": "one-cosine pulse", "ricker": "Ricker wavelet",
+                  "harmonic": "harmonic motion"}
+
+
+def spectrum_report(ds, *, title: str = "Overturning spectra", chart: str | None = "spectrum.png") -> str:
+    """A Markdown report of a spectrum: the block and the inputs, the boundary a_p/(g tan α) per
+    motion and frequency ratio (with its safe islands, and "no overturning in the scanned range"
+    where nothing fell), the warnings, and the chart."""
+    a = ds.attrs
+    top = float(ds.scan_amplitude_ratio.max())
+    low = float(ds.scan_amplitude_ratio.min())
+    pulses = ds.pulse.values.tolist()
+    what = {"overturn": "overturns", "no_impact": "overturns before its first impact (mode 1)",
+            "exceed": "rotates past α"}.get(str(a["criterion"]), str(a["criterion"]))
+    lines = [f"# {title}", "", f"**The smallest floor amplitude a_p/(g tan α) at which the block {what}, against "
+             f"the frequency ratio β = ω_p/p, for {', '.join(_MOTION_TITLES.get(m, m) for m in pulses)}.**", "",
+             f"{block_text(ds)[:1].upper()}{block_text(ds)[1:]}; engine: {a.get('engine', 'system')}. "
+             f"Scanned a_p/(g tan α) from {low:.3g} to "
+             f"{top:.3g}, bisected to a relative {a['rtol']:g}; each run goes on {a['free_time']:g}/p after the motion"
+             + (f"; harmonic motion of {a['cycles']:g} cycles" if "harmonic" in pulses else "") + ".", ""]
+    runs = int(ds.runs.sum())
+    unsure = int(ds.undetermined_runs.sum())
+    if unsure:
+        lines += [f"**{unsure} of {runs} runs were still moving at the end of their free motion: undetermined, "
+                  "counted as safe.** Raise spectrum.free_time to decide them.", ""]
+    slid = int(ds.slid_off_runs.sum())
+    if slid:
+        lines += [f"**In {slid} of {runs} runs a block slid to the edge of the one below, where the stack engine "
+                  "stops: counted as failing (a fall risk).**", ""]
+    lines += ["## Boundary", "", "a_p/(g tan α) of the smallest amplitude that fails; \"none up to "
+              f"{top:.3g}\": no overturning in the scanned range; ⁺: safe islands above the boundary (listed below).",
+              "", "| β = ω_p/p | " + " | ".join(_MOTION_TITLES.get(m, m) for m in pulses) + " |",
+              "|---|" + "---|" * len(pulses)]
+    for k, beta in enumerate(ds.frequency_ratio.values):
+        cells = []
+        for pulse in pulses:
+            value = float(ds.amplitude_ratio.sel(pulse=pulse).values[k])
+            islands = int(ds.n_islands.sel(pulse=pulse).values[k])
+            cells.append(f"none up to {top:.3g}" if not math.isfinite(value)
+                         else f"{value:.3g}" + ("⁺" if islands else ""))
+        lines.append(f"| {beta:.3g} | " + " | ".join(cells) + " |")
+    island_rows = []
+    for pulse in pulses:
+        sub = ds.sel(pulse=pulse)
+        for k, beta in enumerate(ds.frequency_ratio.values):
+            spans = [f"{lo:.3g} – {min(hi, top):.3g}" + (" (open above the scan)" if not hi <= top else "")
+                     for lo, hi in zip(sub.island_lower.values[k], sub.island_upper.values[k]) if math.isfinite(lo)]
+            if spans:
+                island_rows.append(f"| {_MOTION_TITLES.get(pulse, pulse)} | {beta:.3g} | {'; '.join(spans)} |")
+    if island_rows:
+        lines += ["", "## Safe islands", "", "Amplitudes above the boundary where the block survives again.", "",
+                  "| motion | β | a_p/(g tan α) |", "|---|---|---|", *island_rows]
+    if chart:
+        lines += ["", f"![overturning spectra]({chart})"]
+    return "\n".join(lines) + "\n"
 
 
 def plot_spectra_overlay(ds, ax=None, *, title: str | None = None):

@@ -162,6 +162,9 @@ MEANING: dict[str, tuple[str, str]] = {
     "DesignConfig.mu_k_top_ratio": ("–", "or its μk = ratio·μs; omitted: the given top face's ratio"),
     "DesignConfig.pedestal_width": ("m", "pedestal widths to sweep (each > 0); given: the stack engine, as for "
                                          "mu_s_top"),
+    "DesignConfig.top_sliding_limit": ("m", "largest peak slide of the statue on the pedestal's top face (> 0, or "
+                                            "inf: none); omitted, on the stack engine: half the room there, "
+                                            "0.5·((pedestal width − statue width)/2 − |offset|) per width"),
     "_StackStudy.blocks": ("", "the blocks from the floor up, as in stack files; the design's pedestal is the "
                                "first, its statue the second"),
     "_StackStudy.interfaces": ("", "the contacts from the floor up, as in stack files; the design's floor face is "

@@ -146,6 +146,8 @@ class DesignConfig(_Section):
     mu_k_top: NonNegative | None = None
     mu_k_top_ratio: Annotated[float, Field(ge=0, le=1)] | None = None
     pedestal_width: Grid | None = None  # m
+    # m: the statue's slide on the top face; inf (which TOML writes as a literal) for no limit
+    top_sliding_limit: Annotated[float, Field(allow_inf_nan=True)] | None = None
 
     @field_validator("mu_s", "mu_s_top")
     @classmethod
@@ -158,6 +160,14 @@ class DesignConfig(_Section):
     def _mass_values(cls, v: Grid | None) -> Grid | None:
         # > 0 as [pedestal] mass: a massless pedestal is the statue sliding on the floor
         return None if v is None else _checked_grid(v, lambda x: x > 0, "> 0")
+
+    @field_validator("top_sliding_limit")
+    @classmethod
+    def _room_on_top(cls, v: float | None) -> float | None:
+        # NaN passes a pydantic bound, and 0 would forbid any slip: refused here, with the field's name
+        if v is not None and not v > 0:
+            raise ValueError(f"must be a number > 0 (m), or inf for no limit, got {v!r}")
+        return v
 
     @model_validator(mode="after")
     def _one_kinetic(self) -> DesignConfig:
@@ -466,6 +476,10 @@ def design_inputs(study: DesignStudy, base: Path) -> dict[str, Any]:
         statue, pedestal, system, options = _specs(study, src)
         if pedestal is None:
             raise ConfigError([("pedestal", "missing (required): the design sweeps the pedestal's friction")], src)
+        if d.top_sliding_limit is not None and not d.two_faces:
+            raise ConfigError([("design.top_sliding_limit", "applies on the stack engine, where the statue may slip "
+                                "on the pedestal: give design.mu_s_top or design.pedestal_width too, or describe "
+                                "the stack with [[blocks]]")], src)
         if d.two_faces:
             axis = "design.mu_s_top" if d.mu_s_top is not None else "design.pedestal_width"
             if pedestal.height is None:
@@ -498,7 +512,7 @@ def design_inputs(study: DesignStudy, base: Path) -> dict[str, Any]:
                friction_scatter=d.friction_scatter, free_time=d.free_time, options=options)
     if d.two_faces or isinstance(study, _StackStudy):
         out.update(mu_s_top=_grid(d.mu_s_top) if d.mu_s_top is not None else None, mu_k_top=d.mu_k_top,
-                   mu_k_top_ratio=d.mu_k_top_ratio,
+                   mu_k_top_ratio=d.mu_k_top_ratio, top_sliding_limit=d.top_sliding_limit,
                    pedestal_width=_grid(d.pedestal_width) if d.pedestal_width is not None else None)
     return out
 
@@ -771,7 +785,7 @@ def fragility(config: _CONFIG, out: _OUT = None, workers: _WORKERS = None, sched
     ida_<im>.nc, fragility_<im>.nc/.csv, fragility_<im>_<mode>.png and fragility_report.md into
     OUT and prints the fits. Rerun the same command to resume an interrupted study.
     """
-    from ..analyses.fragility import fragility_curves, ida, plot_fragility_curves
+    from ..analyses.fragility import fragility_curves, fragility_report_lines, ida, plot_fragility_curves
 
     _check_workers(workers)
     study, base = load_study("fragility", config)
@@ -800,36 +814,15 @@ def fragility(config: _CONFIG, out: _OUT = None, workers: _WORKERS = None, sched
             _replace(out / f"fragility_{im}.csv", out / f".fragility_{im}.csv.tmp",
                      lambda tmp, table=table: table.to_csv(tmp, index=False))
             written += [f"ida_{im}.nc", f"fragility_{im}.nc", f"fragility_{im}.csv"]
-            unit = curves.attrs["im_units"]
-            lines += [f"## {im.upper()} ({unit})", "", f"| system | failure | median {im.upper()} ({unit}) | "
-                      f"interval | β | observed at the levels |", "|---|---|---|---|---|---|"]
-            for label in curves.system.values.tolist():
-                for mode, text in (("exceed", "θ/α ≥ 1"), ("fall", "falls")):
-                    c = curves.sel(system=label, mode=mode)
-                    med, lo, hi, beta = (float(c[k]) for k in ("im_median", "im_median_lower", "im_median_upper", "beta"))
-                    frac = " ".join(f"{int(k)}/{int(n)}" for k, n in zip(c.n_failed.values, c.n_runs.values))
-                    fit = f"{med:.3g}" if math.isfinite(med) else "no fit"
-                    interval = f"{lo:.3g} – {hi:.3g}" if math.isfinite(lo) else "–"
-                    lines.append(f"| {label} | {text} | {fit} | {interval} | "
-                                 f"{beta:.3g} | {frac} |" if math.isfinite(beta) else
-                                 f"| {label} | {text} | {fit} | {interval} | – | {frac} |")
-            lines.append("")
-            undetermined = int(runs.undetermined.sum())
-            if undetermined:
-                lines += [f"**{undetermined} run(s) were still moving {inputs['free_time']:g} s after their record "
-                          "ended: undetermined, counted as falls.** Raise fragility.free_time to decide them.", ""]
-            slid = int(runs.slid_off.sum())
-            if slid:
-                lines += [f"**{slid} run(s): a block slid to the edge of the one below, where the stack engine stops: "
-                          "counted as falls (a fall risk).**", ""]
+            charts = []
             for mode in ("exceed", "fall"):
                 ax = plot_fragility_curves(curves, mode, title=f"{config.stem}: {im.upper()}")
                 name = f"fragility_{im}_{mode}.png"
                 ax.figure.set_layout_engine("constrained")
                 _write_figure(ax.figure, out / name)
-                written.append(name)
-                lines.append(f"![{im} {mode}]({name})")
-            lines.append("")
+                charts.append(name)
+            written += charts
+            lines += fragility_report_lines(curves, runs, free_time=inputs["free_time"], charts=charts)
     report = "\n".join(lines) + "\n"
     _write_text(out / "fragility_report.md", report)
     typer.echo(report, nl=False)
@@ -841,10 +834,10 @@ def spectrum(config: _CONFIG, out: _OUT = None, workers: _WORKERS = None, schedu
     """Overturning spectra: smallest overturning a_p/(g tan α) against ω_p/p.
 
     For one-sine, one-cosine and Ricker pulses and harmonic motion, with the safe islands above
-    the boundary; writes spectrum.nc, spectrum.csv and spectrum.png into OUT and prints the
-    boundary. Rerun the same command to resume an interrupted study.
+    the boundary; writes spectrum.nc, spectrum.csv, spectrum.png and spectrum_report.md into OUT
+    and prints the boundary. Rerun the same command to resume an interrupted study.
     """
-    from ..analyses.spectra import overturning_spectrum, plot_spectra
+    from ..analyses.spectra import block_text, overturning_spectrum, plot_spectra, spectrum_report
 
     _check_workers(workers)
     study, base = load_study("spectrum", config)
@@ -865,16 +858,17 @@ def spectrum(config: _CONFIG, out: _OUT = None, workers: _WORKERS = None, schedu
                         f"{int(sub.n_islands.values[k])},{' '.join(isl)}")
     _write_text(out / "spectrum.csv", "\n".join(rows) + "\n")
     a = ds.attrs
-    fig = plot_spectra(ds, title=f"{config.stem}: α = {a['alpha']:.3f} rad, p = {a['p']:.3f} 1/s, "
-                                 f"criterion {a['criterion']}")
+    fig = plot_spectra(ds, title=f"{config.stem}: {block_text(ds)}, criterion {a['criterion']}")
     _write_figure(fig, out / "spectrum.png")
+    _write_text(out / "spectrum_report.md", spectrum_report(ds, title=f"Overturning spectra: {config.name}"))
     console_lines = [f"minimum overturning a_p/(g tan α) (α = {a['alpha']:.4f} rad, p = {a['p']:.4f} 1/s):",
                      "β = ω_p/p  " + "  ".join(f"{p:>10s}" for p in ds.pulse.values.tolist())]
     for k, beta in enumerate(ds.frequency_ratio.values):
         vals = "  ".join(f"{v:10.4g}" + ("*" if n else " ")
                          for v, n in zip(ds.amplitude_ratio.values[:, k], ds.n_islands.values[:, k]))
         console_lines.append(f"{beta:9.4g}  {vals}")
-    console_lines.append("(* safe islands above the boundary: see spectrum.csv; NaN: no overturning in range)")
+    console_lines.append("(* safe islands above the boundary: see spectrum.csv; nan: no overturning in the scanned "
+                         f"range, up to {float(ds.scan_amplitude_ratio.max()):.3g})")
     undetermined = int(ds.undetermined_runs.sum())
     if undetermined:
         console_lines.append(f"warning: {undetermined} of {int(ds.runs.sum())} runs were still moving at the free-motion "
@@ -885,7 +879,7 @@ def spectrum(config: _CONFIG, out: _OUT = None, workers: _WORKERS = None, schedu
         console_lines.append(f"note: in {slid} of {int(ds.runs.sum())} runs a block slid to the edge of the one below, "
                              "where the stack engine stops: counted as failing (a fall risk)")
     typer.echo("\n".join(console_lines))
-    typer.echo(f"wrote {out}/spectrum.nc, spectrum.csv and spectrum.png", err=True)
+    typer.echo(f"wrote {out}/spectrum.nc, spectrum.csv, spectrum.png and spectrum_report.md", err=True)
 
 
 def register(app: typer.Typer) -> None:

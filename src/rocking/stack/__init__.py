@@ -1,7 +1,7 @@
 """Stacks of rigid blocks: the general planar contact engine (issue 11; docs/theory/stack.md).
 
-Example
--------
+Examples
+--------
 >>> import rocking
 >>> from rocking.stack import Block, Interface, Stack, simulate_stack
 >>> stack = Stack(blocks=(Block(name="pedestal", width=0.8, height=0.5, mass=300.0),

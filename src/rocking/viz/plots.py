@@ -367,6 +367,8 @@ def plot_spectrum(
     color: str | None = None,
     shade: bool = True,
     ymax: float | None = None,
+    scan_top: float | None = None,
+    legend: bool = True,
 ) -> Axes:
     """Overturning spectrum: x = ω_p/p, y = a_p/(g tan α); the overturn region shaded.
 
@@ -393,6 +395,12 @@ def plot_spectrum(
         Shade the overturn region (turn off when overlaying several boundaries).
     ymax : float, optional
         Top of the plot (default: 1.15 × the largest finite amplitude ratio).
+    scan_top : float, optional
+        The highest a_p/(g tan α) scanned: where the boundary is NaN (nothing overturned up to
+        it), the band is drawn grey and says "no overturning in the scanned range".
+    legend : bool
+        Draw the legend in a strip above the axes, off the islands (off: gather the handles,
+        ``ax.spectrum_handles``, into a figure legend).
     """
     ax = _new_axes(ax)
     if isinstance(data, tuple) and len(data) == 2:
@@ -433,6 +441,8 @@ def plot_spectrum(
         (line,) = ax.plot(fr, ar, color=color, lw=1.4, label=label, zorder=3)
         if label:
             handles.insert(0, line)
+        if scan_top is not None and np.isnan(ar).any():
+            handles.append(_no_overturning(ax, fr, ar, scan_top))
 
     if safe_islands is not None and len(safe_islands):
         for island in safe_islands:
@@ -448,10 +458,35 @@ def plot_spectrum(
     ax.set_ylim(0.0, top)
     ax.set_xlabel("frequency ratio ω_p/p (–)")
     ax.set_ylabel("amplitude ratio a_p/(g tan α) (–)")
-    if handles:
-        ax.legend(handles=handles, loc="upper left", fontsize=_LEGEND_SIZE, framealpha=0.9)
+    if handles and legend:
+        ax.legend(handles=handles, loc="lower left", bbox_to_anchor=(0.0, 1.02), ncol=2, fontsize=_LEGEND_SIZE,
+                  frameon=False, borderaxespad=0.0)
+    ax.spectrum_handles = handles  # type: ignore[attr-defined]
     _style(ax)
     return ax
+
+
+def _no_overturning(ax: Axes, fr: np.ndarray, ar: np.ndarray, scan_top: float) -> Patch:
+    """Grey the frequencies where nothing overturned up to ``scan_top`` (the boundary's NaN gap),
+    from the neighbouring frequencies that overturn (where the shaded region ends), and say so in
+    the widest such span."""
+    gap = np.isnan(ar)
+    spans, start = [], None
+    for k, g in enumerate(np.append(gap, False)):
+        if g and start is None:
+            start = k
+        elif not g and start is not None:
+            spans.append((fr[max(start - 1, 0)], fr[min(k, fr.size - 1)]))
+            start = None
+    style = dict(facecolor="0.93", edgecolor="0.75", hatch="..", lw=0.0, zorder=0)
+    for lo, hi in spans:
+        ax.fill_between([lo, hi], 0.0, scan_top, **style)
+    lo, hi = max(spans, key=lambda span: span[1] - span[0])
+    wide = hi - lo > 0.3 * (fr[-1] - fr[0])  # else written upright along the band
+    ax.text(0.5 * (lo + hi), 0.5 * scan_top, f"no overturning in the scanned range (up to {scan_top:.3g})"
+            .replace(" in", "\nin" if wide else " in").replace(" (", "\n(" if wide else " ("),
+            rotation=0 if wide else 90, ha="center", va="center", fontsize=7, color="0.3", zorder=4)
+    return Patch(**style, label=f"no overturning up to {scan_top:.3g}")
 
 
 def lognormal_cdf(x: Any, median: float, beta: float) -> np.ndarray:
@@ -476,6 +511,9 @@ def plot_fragility(
     im_label: str = "PGA (m/s²)",
     counts: Any = None,
     color: str | None = None,
+    tested_max: float | None = None,
+    units: str = "",
+    legend: bool = True,
 ) -> Axes:
     """Fragility: observed fractions of failure (points) and the fitted lognormal CDF.
 
@@ -495,12 +533,21 @@ def plot_fragility(
         x-axis label, with its unit.
     counts : array, optional
         Runs behind each point, shown as ``k/n`` annotations.
+    tested_max : float, optional
+        The highest level run (default: the largest ``im``). A median above it is extrapolated:
+        marked with an open diamond and "(extrapolated)" in its label, and the range beyond the
+        highest level is greyed.
+    units : str
+        The unit of the intensity measure in the labels (e.g. "m/s²").
+    legend : bool
+        Draw the legend in a strip above the axes, off the data.
     """
     ax = _new_axes(ax)
     color = color or COLORS["fit"]
     im = np.asarray(im, dtype=float)
     pe = np.asarray(p_exceed, dtype=float)
     hi = float(np.nanmax(im)) if im.size else 1.0
+    tested = float(tested_max) if tested_max is not None else hi
     if median is not None and math.isfinite(median):
         hi = max(hi, 2.0 * median)
     if band is not None:
@@ -508,11 +555,18 @@ def plot_fragility(
         ax.fill_between(bx, lo, up, color=COLORS["band"], alpha=0.45, lw=0, label="confidence band", zorder=0)
     if median is not None and beta is not None:
         x = np.linspace(0.0, hi * 1.05, 400)
-        text = f"median = {median:.3g}, β = {beta:.2f}"
+        beyond = median > tested
+        unit = f" {units}" if units else ""
+        text = f"median = {median:.3g}{unit}{' (extrapolated)' if beyond else ''}, β = {beta:.2f}"
         ax.plot(x, lognormal_cdf(x, median, beta), color=color, lw=1.4, zorder=2,
                 label=f"{label}: {text}" if label else f"lognormal fit: {text}")
         ax.plot([median, median], [0.0, 0.5], color=color, lw=0.7, ls=":", zorder=1)
         ax.plot([0.0, median], [0.5, 0.5], color=color, lw=0.7, ls=":", zorder=1)
+        if beyond:
+            ax.plot([median], [0.5], "D", ms=6, mfc="white", mec=color, mew=1.3, zorder=4)
+            ax.axvspan(tested, max(hi * 1.05, median * 1.1), color="0.9", lw=0, zorder=-1)
+            ax.annotate(f"beyond the highest\nlevel run ({tested:.3g}{unit})", (tested, 0.0), xytext=(4, 3),
+                        textcoords="offset points", ha="left", va="bottom", fontsize=6.5, color="0.35")
     ax.plot(im, pe, "o", ms=4.5, mfc="white", mec=color, mew=1.1, ls="none", zorder=3,
             label="observed fraction" if label is None or median is None else f"{label}: observed")
     if counts is not None:
@@ -523,9 +577,57 @@ def plot_fragility(
     ax.set_ylim(-0.02, 1.02)
     ax.set_xlabel(im_label)
     ax.set_ylabel("probability of overturning (–)")
-    ax.legend(loc="lower right", fontsize=_LEGEND_SIZE, framealpha=0.9)
+    if legend:
+        ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.02), ncol=2, fontsize=_LEGEND_SIZE, frameon=False,
+                  borderaxespad=0.0)
     _style(ax)
     return ax
+
+
+#: Colour and line style of the limit on the statue's slide on the top face (the design chart).
+TOP_LIMIT_COLOR = "#7a3b8f"
+_TOP_LIMIT_STYLE = (0, (5, 2, 1, 2, 1, 2))
+
+
+def _mm_text(value_mm: float) -> str:
+    """A length in mm for reading: '0 mm', '< 0.01 mm', '0.05 mm', '12 mm', '303.7 mm'."""
+    x = float(value_mm)
+    if not math.isfinite(x):
+        return "–"
+    if x == 0:
+        return "0 mm"
+    if abs(x) < 0.005:
+        return "< 0.01 mm"
+    if abs(x) < 1:
+        return f"{x:.2f}".rstrip("0").rstrip(".") + " mm"
+    return f"{x:.1f}".removesuffix(".0") + " mm"
+
+
+def _design_axes(ax: Axes | None) -> tuple[Axes, Axes, Axes]:
+    """Three axes sharing μs: peak θ/α, the rate of falls, the sliding; in place of ``ax`` if given."""
+    ratios = (1.5, 0.75, 1.75)
+    if ax is None:
+        fig = Figure(figsize=(6.4, 5.6), layout="constrained")
+        return tuple(fig.subplots(3, 1, sharex=True, height_ratios=ratios))  # type: ignore[return-value]
+    spec = ax.get_subplotspec().subgridspec(3, 1, height_ratios=ratios, hspace=0.08)
+    fig = ax.figure
+    ax.remove()
+    top = fig.add_subplot(spec[0])
+    return top, fig.add_subplot(spec[1], sharex=top), fig.add_subplot(spec[2], sharex=top)
+
+
+def _limit_labels(ax: Axes, limits: Sequence[tuple[float, str, str, Any]]) -> None:
+    """Horizontal limit lines (value, label, colour, line style), each labelled just right of the
+    axes (never on the data); of two labels closer than a fifth of the axis, the higher one is
+    lifted above its line and the lower one put under its own."""
+    lo, hi = ax.get_ylim()
+    close = len(limits) == 2 and abs(limits[0][0] - limits[1][0]) < 0.2 * (hi - lo)
+    top_value = max(v for v, *_ in limits) if limits else 0.0
+    for value, text, color, style in limits:
+        ax.axhline(value, color=color, lw=1.0, ls=style, zorder=2)
+        va = ("bottom" if value == top_value else "top") if close else "center"
+        ax.annotate(text, (1.0, value), xycoords=ax.get_yaxis_transform(), xytext=(4, 0), textcoords="offset points",
+                    ha="left", va=va, fontsize=_LEGEND_SIZE, color=color, annotation_clip=False)
 
 
 def plot_design_chart(
@@ -541,11 +643,18 @@ def plot_design_chart(
     friction_scatter: float = 0.0,
     top_sliding: Any = None,
     rate_label: str = "overturn rate",
+    rotation_label: str = "peak |θ|/α (–)",
+    sliding_limit: float | None = None,
+    top_sliding_limit: float | None = None,
+    sliding_max: float | None = None,
+    axes: Sequence[Axes] | None = None,
+    legend: bool = True,
 ) -> Axes:
-    """Design chart against the floor friction under the pedestal, on two y-axes.
+    """Design chart against the floor friction under the pedestal, on three axes sharing μs.
 
-    Left: peak θ/α (line, circles; values above 2 are clipped and marked ▲) and the overturn
-    rate (fraction of runs that overturn, bars). Right: peak sliding (mm, dashed).
+    Top: peak θ/α (values above 2 are clipped, marked ▲ and labelled with their value). Middle:
+    the overturn rate (fraction of runs that overturn, bars). Bottom: peak sliding (mm) with the
+    limits, each labelled at the right. The legend sits in a strip above the top axes.
 
     Parameters
     ----------
@@ -565,71 +674,106 @@ def plot_design_chart(
         Relative scatter s of the friction: shade [μs·(1 − s), μs·(1 + s)] around the
         recommended μs, the range its safety was checked over.
     top_sliding : array, optional
-        Peak sliding of the statue on the pedestal's top face, m (shown in mm, dotted, on the
-        right axis next to the pedestal's sliding on the floor).
-    rate_label : str
-        Legend text of the bars.
+        Peak sliding of the statue on the pedestal's top face, m (shown in mm, dotted, next to
+        the pedestal's sliding on the floor).
+    rate_label, rotation_label : str
+        The y labels of the bars' and the rotation's axes.
+    sliding_limit, top_sliding_limit : float, optional
+        The limits on the sliding on the floor and on the top face, m (``inf``: none drawn).
+    sliding_max : float, optional
+        Top of the sliding axis, mm (to share it between panels).
+    axes : three Axes, optional
+        Draw into these (rotation, rate, sliding) instead of ``ax``'s place.
+    legend : bool
+        Draw the legend above the top axes (off to gather the legends of several panels).
 
     Returns
     -------
     Axes
-        The left axes; the right one is ``ax.right_ax``.
+        The top (rotation) axes; ``.rate_ax`` and ``.sliding_ax`` are the others (``.right_ax``
+        is the sliding axes too, its name when it was a twin axis).
     """
-    ax = _new_axes(ax)
+    rot_ax, rate_ax, slide_ax = tuple(axes) if axes is not None else _design_axes(ax)
     mu = np.asarray(mu_s, dtype=float)
     rot = np.asarray(peak_rotation_ratio, dtype=float)
     slide = 1e3 * np.asarray(peak_sliding, dtype=float)
     order = np.argsort(mu)
     mu, rot, slide = mu[order], rot[order], slide[order]
-    top = 2.0
-    handles = []
+    clip = 2.0
+    handles: list[Any] = []
+
+    shown = np.where(np.isfinite(rot), np.minimum(rot, clip), clip)
+    (line,) = rot_ax.plot(mu, shown, "-o", color=COLORS["theta"], ms=4, lw=1.3, zorder=3, label="peak |θ|/α")
+    handles.append(line)
+    clipped = ~(np.isfinite(rot) & (rot <= clip))
+    if clipped.any():
+        marks = rot_ax.plot(mu[clipped], np.full(clipped.sum(), clip), "^", color=COLORS["overturn"], ms=6, zorder=4,
+                            label="clipped at 2 (its value)")
+        handles.append(marks[0])
+        for x, value in zip(mu[clipped], rot[clipped]):
+            rot_ax.annotate(f"{value:.3g}" if np.isfinite(value) else "∞", (x, clip), xytext=(0, 5),
+                            textcoords="offset points", ha="center", va="bottom", fontsize=7, color=COLORS["overturn"])
+    rot_ax.axhline(1.0, color="0.35", lw=0.8, ls="--", zorder=2)
+    rot_ax.annotate("θ = α", (0.0, 1.0), xycoords=rot_ax.get_yaxis_transform(), xytext=(3, 2),
+                    textcoords="offset points", fontsize=7, color="0.35", va="bottom")
+    rot_ax.set_ylim(0.0, clip * 1.25)
+    rot_ax.set_ylabel(rotation_label)
+
     if overturn_rate is not None:
         rate = np.asarray(overturn_rate, dtype=float)[order]
         width = 0.6 * float(np.min(np.diff(mu))) if mu.size > 1 else 0.05
-        bars = ax.bar(mu, rate, width=width, color="#f6c9c4", edgecolor=COLORS["overturn"], lw=0.6,
-                      zorder=1, label=rate_label)
+        bars = rate_ax.bar(mu, rate, width=width, color="#f6c9c4", edgecolor=COLORS["overturn"], lw=0.6, zorder=1,
+                           label=rate_label)
         handles.append(bars)
-    shown = np.where(np.isfinite(rot), np.minimum(rot, top), top)
-    (line,) = ax.plot(mu, shown, "-o", color=COLORS["theta"], ms=4, lw=1.3, zorder=3, label="peak |θ|/α")
-    handles.append(line)
-    clipped = ~(np.isfinite(rot) & (rot <= top))
-    if clipped.any():
-        ax.plot(mu[clipped], np.full(clipped.sum(), top), "^", color=COLORS["overturn"], ms=6, zorder=4)
-    ax.axhline(1.0, color="0.35", lw=0.8, ls="--", zorder=2)
-    if tan_alpha is not None:
-        ax.axvline(tan_alpha, color="0.5", lw=0.8, ls=":", zorder=2)
-        ax.annotate("μs = tan α", (tan_alpha, top * 0.97), xytext=(3, 0), textcoords="offset points",
-                    fontsize=_LEGEND_SIZE, color="0.35", va="top")
-    if recommended is not None:
-        rec = float(recommended)
-        if friction_scatter > 0:
-            span = ax.axvspan(rec * (1.0 - friction_scatter), rec * (1.0 + friction_scatter), color=COLORS["energy"],
-                              alpha=0.12, lw=0, zorder=0, label=f"μs·(1 ± {friction_scatter:g})")
-            handles.append(span)
-        ax.axvline(rec, color=COLORS["energy"], lw=1.6, alpha=0.7, zorder=2)
-        ax.annotate("recommended", (rec, 0.02), xytext=(3, 2), textcoords="offset points", fontsize=_LEGEND_SIZE,
-                    color=COLORS["energy"])
-    ax.set_ylim(0.0, top * 1.05)
-    ax.set_xlabel(xlabel)
-    ax.set_ylabel("peak |θ|/α, overturn rate (–)")
-    right = ax.twinx()
-    floor_label = "peak sliding (mm)" if top_sliding is None else "pedestal on the floor (mm)"
-    (sl,) = right.plot(mu, slide, "--s", color=COLORS["secondary"], ms=3.5, lw=1.2, zorder=3,
-                       label=floor_label)
+    rate_ax.set_ylim(0.0, 1.05)
+    rate_ax.set_yticks([0.0, 0.5, 1.0])
+    rate_ax.set_ylabel(f"{rate_label.replace(' ', chr(10), 1)} (–)")  # two short lines: its axes is short
+
+    floor_label = "peak sliding" if top_sliding is None else "pedestal on the floor"
+    (sl,) = slide_ax.plot(mu, slide, "--s", color=COLORS["secondary"], ms=3.5, lw=1.2, zorder=3, label=floor_label)
     handles.append(sl)
     shown_slides = slide
     if top_sliding is not None:
         top_mm = 1e3 * np.asarray(top_sliding, dtype=float)[order]
-        (tl,) = right.plot(mu, top_mm, ":D", color=COLORS["secondary"], ms=3.0, lw=1.4, zorder=3,
-                           mfc="white", label="statue on the top face (mm)")
+        (tl,) = slide_ax.plot(mu, top_mm, ":D", color=COLORS["secondary"], ms=3.0, lw=1.4, zorder=3, mfc="white",
+                              label="statue on the top face")
         handles.append(tl)
         shown_slides = np.concatenate((slide, top_mm))
-    right.set_ylabel("peak sliding (mm)", color=COLORS["secondary"])
-    right.tick_params(axis="y", colors=COLORS["secondary"], labelsize=_TICK_SIZE)
-    right.yaxis.label.set_size(_LABEL_SIZE)
-    finite = shown_slides[np.isfinite(shown_slides)]
-    right.set_ylim(0.0, 1.1 * float(finite.max()) if finite.size and finite.max() > 0 else 1.0)
-    _style(ax)
-    ax.legend(handles=handles, loc="upper right", fontsize=_LEGEND_SIZE, framealpha=0.9)
-    ax.right_ax = right  # type: ignore[attr-defined]
-    return ax
+    limits = [(1e3 * float(v), f"{name}\n{_mm_text(1e3 * float(v))}", color, style)
+              for v, name, color, style in ((sliding_limit, "sliding limit", "0.2", "-."),
+                                            (top_sliding_limit, "top-face limit", TOP_LIMIT_COLOR, _TOP_LIMIT_STYLE))
+              if v is not None and math.isfinite(v)]
+    finite = np.concatenate((shown_slides[np.isfinite(shown_slides)], [v for v, *_ in limits]))
+    top = sliding_max if sliding_max is not None else (1.1 * float(finite.max()) if finite.size else 0.0)
+    slide_ax.set_ylim(0.0, top if top > 0 else 1.0)
+    _limit_labels(slide_ax, limits)
+    slide_ax.set_ylabel("peak sliding (mm)")
+    slide_ax.set_xlabel(xlabel)
+
+    for a in (rot_ax, rate_ax, slide_ax):
+        if tan_alpha is not None:
+            a.axvline(tan_alpha, color="0.5", lw=0.8, ls=":", zorder=2)
+        _style(a)
+    if tan_alpha is not None:
+        handles.append(Line2D([], [], color="0.5", lw=0.8, ls=":", label=f"μs = tan α = {tan_alpha:.3g}"))
+    if recommended is not None:
+        rec = float(recommended)
+        for a in (rot_ax, rate_ax, slide_ax):
+            if friction_scatter > 0:
+                a.axvspan(rec * (1.0 - friction_scatter), rec * (1.0 + friction_scatter), color=COLORS["energy"],
+                          alpha=0.12, lw=0, zorder=0, label=f"μs·(1 ± {friction_scatter:g})" if a is rot_ax else None)
+            a.axvline(rec, color=COLORS["energy"], lw=1.6, alpha=0.7, zorder=2)
+        handles.append(Line2D([], [], color=COLORS["energy"], lw=1.6, alpha=0.7, label=f"recommended μs = {rec:.3g}"))
+        if friction_scatter > 0:
+            handles.append(Patch(color=COLORS["energy"], alpha=0.12, lw=0,
+                                 label=f"its scatter μs·(1 ± {friction_scatter:g})"))
+    for a in (rot_ax, rate_ax):
+        a.tick_params(labelbottom=False)
+    if legend:
+        rot_ax.legend(handles=handles, loc="lower left", bbox_to_anchor=(0.0, 1.02), ncol=3, fontsize=_LEGEND_SIZE,
+                      frameon=False, borderaxespad=0.0, handlelength=1.8)
+    rot_ax.rate_ax = rate_ax  # type: ignore[attr-defined]
+    rot_ax.sliding_ax = slide_ax  # type: ignore[attr-defined]
+    rot_ax.right_ax = slide_ax  # type: ignore[attr-defined]
+    rot_ax.design_handles = handles  # type: ignore[attr-defined]
+    return rot_ax
