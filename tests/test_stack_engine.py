@@ -402,3 +402,43 @@ def test_a_block_sliding_to_the_edge_of_the_one_below_stops_the_run_undetermined
     assert r.verdict == (f"undetermined: {stack.names[1]} slid to the edge of {stack.names[0]} at t = {r.end_time:.3f} s; "
                          "the model stops there (treat it as falling off)")
     assert abs(r.blocks[1]["residual_sliding"] + 0.1) < 1e-9
+
+
+def test_a_mode_solve_satisfies_the_equations_of_that_mode():
+    """solve_mode solves only the free coordinates' rows (docs/theory/stack.md): check the full
+    equations M z̈ = f + Λ at random M (symmetric positive definite), f and every mode of a
+    three-block stack — z̈ = 0 where frozen, Λ = 0 on free coordinates except a slipping a, where
+    Λ_a = −μk σ Λ_d — to rounding."""
+    from rocking.stack import modes
+    from rocking.stack.kinematics import P_CAN_SLIP, P_MU_K
+    from rocking.stack.simulate import pack
+
+    stack = Stack(blocks=(Block(width=1.2, height=0.4, mass=400.0), Block(width=0.4, height=1.4, mass=150.0),
+                          Block(width=0.2, height=0.45, mass=8.0)),
+                  interfaces=tuple(Interface(friction=Friction(static=0.5, kinetic=0.4)) for _ in range(3)))
+    P = pack(stack)[0]
+    rng = np.random.default_rng(7)
+    n, nz = 3, 9
+    checked = 0
+    for _ in range(3):
+        R = rng.standard_normal((nz, nz))
+        M = R @ R.T + nz * np.eye(nz)
+        f = rng.standard_normal(nz)
+        for states in np.ndindex(3, 3, 3, 3, 3, 3):
+            nstate = np.array(states[:3], dtype=np.int64)
+            tstate = np.array(states[3:], dtype=np.int64) - 1
+            if np.any((nstate == modes.OPEN) & (tstate != 0)):
+                continue
+            x, lam = np.full(nz, np.nan), np.full(nz, np.nan)
+            assert modes.solve_mode(M, f, P, nstate, tstate, x, lam)
+            frozen = np.zeros(nz, dtype=bool)
+            modes.frozen_set(nstate, tstate, P, frozen)
+            assert np.all(x[frozen] == 0.0)
+            expected = np.where(frozen, lam, 0.0)
+            for k in range(n):
+                if nstate[k] >= modes.ROCK and tstate[k] != 0 and P[k, P_CAN_SLIP] > 0.5:
+                    expected[3 * k] = -P[k, P_MU_K] * tstate[k] * lam[3 * k + 2]
+            np.testing.assert_allclose(lam, expected, rtol=0, atol=1e-13 * np.abs(lam).max(initial=1.0))
+            np.testing.assert_allclose(M @ x, f + lam, rtol=0, atol=1e-12 * (np.abs(f).max() + np.abs(lam).max()))
+            checked += 1
+    assert checked == 3 * 7**3  # per interface: open (stuck only), or rock or flat, each stuck or slipping ±

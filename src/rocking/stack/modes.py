@@ -81,57 +81,77 @@ def frozen_set(nstate, tstate, P, frozen):
 
 @njit(cache=True)
 def solve_mode(M, f, P, nstate, tstate, x_out, lam_out):
-    """Solve the mode's equations: x_out = z̈ (or ż⁺), lam_out = Λ on frozen coordinates (and the
-    friction force on a slipping a). Returns False if the system is singular."""
+    """Solve the mode's equations M z̈ = f + Λ: x_out = z̈ (or ż⁺), lam_out = Λ on frozen
+    coordinates (and the friction force −μk σ Λ_d on a slipping a). Returns False if the system
+    is singular. Only the columns of M of the free coordinates are read.
+
+    The frozen coordinates have z̈ = 0, so only the rows of the free ones are solved, for their
+    accelerations; each frozen row then gives its Λ = (M z̈ − f). A slipping a's row carries
+    −μk σ Λ_d, with Λ_d the same expression of its interface's d, which folds into that row:
+    (M_a + μk σ M_d) z̈ = f_a + μk σ f_d. The reduced system has one unknown per free coordinate
+    (1 to 3 in most modes, of 3N), which is what makes a mode's right-hand side cheap."""
     nz = f.shape[0]
+    n = nstate.shape[0]
     frozen = np.zeros(nz, dtype=np.bool_)
     frozen_set(nstate, tstate, P, frozen)
-    K = np.zeros((nz, nz))
+    free = np.empty(nz, dtype=np.int64)
+    row_of = np.full(nz, -1, dtype=np.int64)
+    nf = 0
     for i in range(nz):
-        for j in range(nz):
-            if not frozen[j]:
-                K[i, j] = M[i, j]
-        if frozen[i]:
-            K[i, i] = -1.0
-    n = nstate.shape[0]
+        if not frozen[i]:
+            free[nf] = i
+            row_of[i] = nf
+            nf += 1
+    K = np.empty((nf, nf))
+    b = np.empty(nf)
+    for r in range(nf):
+        i = free[r]
+        for c in range(nf):
+            K[r, c] = M[i, free[c]]
+        b[r] = f[i]
     for k in range(n):
         i = 3 * k
         if nstate[k] >= ROCK and tstate[k] != 0 and P[k, P_CAN_SLIP] > 0.5:
-            # friction −μk σ Λ_d on a, Λ_d the unknown in column d
-            K[i, i + 2] += P[k, P_MU_K] * tstate[k]
-    # Gaussian elimination with partial pivoting (small dense systems)
-    b = f.copy()
-    for c in range(nz):
+            r = row_of[i]
+            mu = P[k, P_MU_K] * tstate[k]
+            for c in range(nf):
+                K[r, c] += mu * M[i + 2, free[c]]
+            b[r] += mu * f[i + 2]
+    # Gaussian elimination with partial pivoting (nf ≤ 3N, mostly 1–3)
+    for c in range(nf):
         p = c
         best = abs(K[c, c])
-        for r in range(c + 1, nz):
+        for r in range(c + 1, nf):
             if abs(K[r, c]) > best:
                 best = abs(K[r, c])
                 p = r
         if best == 0.0 or not math.isfinite(best):
             return False
         if p != c:
-            for j in range(nz):
+            for j in range(nf):
                 K[c, j], K[p, j] = K[p, j], K[c, j]
             b[c], b[p] = b[p], b[c]
-        for r in range(c + 1, nz):
+        for r in range(c + 1, nf):
             fac = K[r, c] / K[c, c]
             if fac != 0.0:
-                for j in range(c, nz):
+                for j in range(c, nf):
                     K[r, j] -= fac * K[c, j]
                 b[r] -= fac * b[c]
-    sol = np.zeros(nz)
-    for r in range(nz - 1, -1, -1):
+    for r in range(nf - 1, -1, -1):
         acc = b[r]
-        for j in range(r + 1, nz):
-            acc -= K[r, j] * sol[j]
-        sol[r] = acc / K[r, r]
+        for j in range(r + 1, nf):
+            acc -= K[r, j] * x_out[free[j]]
+        x_out[free[r]] = acc / K[r, r]
     for i in range(nz):
         if frozen[i]:
             x_out[i] = 0.0
-            lam_out[i] = sol[i]
+    for i in range(nz):
+        if frozen[i]:
+            acc = -f[i]
+            for c in range(nf):
+                acc += M[i, free[c]] * x_out[free[c]]
+            lam_out[i] = acc
         else:
-            x_out[i] = sol[i]
             lam_out[i] = 0.0
     for k in range(n):
         i = 3 * k
