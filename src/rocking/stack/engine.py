@@ -105,6 +105,13 @@ def slip_of(P, ends, anchor, k, z):
 def evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, dy, lam):
     """Right-hand side dy/dt of the current mode at (t, y); ``lam`` receives the contact forces
     (Λ on the frozen coordinates). Returns False if the mode's equations are singular."""
+    ah, av = _ground(loc, t)
+    return evaluate_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, dy, lam)
+
+
+@njit(cache=True)
+def evaluate_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, dy, lam):
+    """:func:`evaluate` under the floor accelerations ah, av (m/s²) rather than at a time."""
     n = P.shape[0]
     nz = 3 * n
     z = y[:nz]
@@ -112,7 +119,6 @@ def evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, dy, lam):
     A, beta, C, X, Xd, th, thd = new_frame(n)
     M = np.zeros((nz, nz))
     f = np.zeros(nz)
-    ah, av = _ground(loc, t)
     forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, th, thd)
     mass_and_forces(P, A, beta, C, ah, av, gravity, M, f)
     zdd = np.zeros(nz)
@@ -135,11 +141,18 @@ def evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, dy, lam):
 @njit(cache=True)
 def guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g, held):
     """Guard values (N × N_GUARD_SLOTS, flattened), positive while the mode holds."""
+    ah, av = _ground(loc, t)
+    guards_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, g, held)
+
+
+@njit(cache=True)
+def guards_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, g, held):
+    """:func:`guards` under the floor accelerations ah, av (m/s²) rather than at a time."""
     n = P.shape[0]
     nz = 3 * n
     dy = np.empty(2 * nz + 2)
     lam = np.zeros(nz)
-    evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, dy, lam)
+    evaluate_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, dy, lam)
     z = y[:nz]
     zd = y[nz:2 * nz]
     for k in range(n):
@@ -178,6 +191,25 @@ def guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g, held):
                 sl = 1.0 if ends[k, 0, 0] == END_U else -1.0
                 sr = 1.0 if ends[k, 1, 0] == END_U else -1.0
                 g[b + G_EDGE] = min(sl * (xl + bl), sr * (bl - xr))
+
+
+@njit(cache=True)
+def _rest_band(P, ends, anchor, nstate, tstate, y, gravity, held, band0, band_h, band_v):
+    """The guards of a stack at rest as affine functions of the floor accelerations: their values
+    at (a_h, a_v) = (0, 0) and their slopes along a_h and a_v (fills band0, band_h, band_v)."""
+    guards_at(P, ends, anchor, nstate, tstate, 0.0, 0.0, y, gravity, band0, held)
+    guards_at(P, ends, anchor, nstate, tstate, 1.0, 0.0, y, gravity, band_h, held)
+    guards_at(P, ends, anchor, nstate, tstate, 0.0, 1.0, y, gravity, band_v, held)
+    for j in range(band0.shape[0]):
+        band_h[j] -= band0[j]
+        band_v[j] -= band0[j]
+
+
+@njit(cache=True)
+def _band_guards(band0, band_h, band_v, loc, t, g):
+    ah, av = _ground(loc, t)
+    for j in range(g.shape[0]):
+        g[j] = band0[j] + ah * band_h[j] + av * band_v[j]
 
 
 @njit(cache=True)
@@ -284,6 +316,13 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
     t_last_event = -1.0
     repeats = 0
     held = np.zeros(n, dtype=np.bool_)
+    # While everything is flat and stuck nothing moves and every guard is affine in the floor
+    # accelerations: g = band0 + a_h·band_h + a_v·band_v (as rocking.simulate's rest band). It is
+    # computed once per rest and holds until the state changes (band_ok).
+    band0 = np.empty(n * N_GUARD_SLOTS)
+    band_h = np.empty(n * N_GUARD_SLOTS)
+    band_v = np.empty(n * N_GUARD_SLOTS)
+    band_ok = False
     n_out = 0
     n_ev = 0
     next_grid = 0
@@ -326,10 +365,19 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             ib += 1
             loc = pieces[ib]
             crossed = True
+        at_rest = _all_stuck(nstate, tstate)
+        if not at_rest:
+            band_ok = False
         if crossed:
             # the floor motion may jump here (a pulse's end): the mode is decided again if any
             # guard is not positive under the new formula
-            guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0, held)
+            if at_rest:
+                if not band_ok:
+                    _rest_band(P, ends, anchor, nstate, tstate, y, gravity, held, band0, band_h, band_v)
+                    band_ok = True
+                _band_guards(band0, band_h, band_v, loc, t, g0)
+            else:
+                guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0, held)
             bad = False
             for j in range(ng):
                 if g0[j] <= 0.0 and _is_force(j, nstate, tstate):
@@ -348,6 +396,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                     break
                 y[:nz] = zv
                 y[nz:2 * nz] = zdv
+                band_ok = False
             _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0])
         if ib < nb:
             t_lim = min(t_lim, breakpoints[ib])
@@ -362,8 +411,11 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             # between samples, a ramp, nothing): the state cannot change and every guard, linear
             # in the floor acceleration, is linear in time. Jump to the piece's end, or to the
             # exact root of the first guard that reaches zero, without integrating.
-            guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0, held)
-            guards(P, ends, anchor, nstate, tstate, t_lim, y, loc, gravity, g1, held)
+            if not band_ok:
+                _rest_band(P, ends, anchor, nstate, tstate, y, gravity, held, band0, band_h, band_v)
+                band_ok = True
+            _band_guards(band0, band_h, band_v, loc, t, g0)
+            _band_guards(band0, band_h, band_v, loc, t_lim, g1)
             first = -1
             x_first = 2.0
             for j in range(ng):
@@ -380,6 +432,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 next_grid += 1
             t = t_to
             if first >= 0:
+                band_ok = False
                 k_ev = first // N_GUARD_SLOTS
                 status, d_impact, n_ev = _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k_ev,
                                                        first - k_ev * N_GUARD_SLOTS, tol_force, tol_rate,
@@ -391,6 +444,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                     n_out += 1
             _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0])
             continue
+        band_ok = False
         err = _step(P, ends, anchor, nstate, tstate, t, y, hs, loc, gravity, K, y_new, rtol, atol, n_ctrl)
         if not (err <= 1.0) or not math.isfinite(err):
             h = hs * max(0.2, 0.9 * (err ** -0.125) if math.isfinite(err) and err > 0 else 0.2)
