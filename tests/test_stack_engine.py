@@ -442,3 +442,22 @@ def test_a_mode_solve_satisfies_the_equations_of_that_mode():
             np.testing.assert_allclose(M @ x, f + lam, rtol=0, atol=1e-12 * (np.abs(f).max() + np.abs(lam).max()))
             checked += 1
     assert checked == 3 * 7**3  # per interface: open (stuck only), or rock or flat, each stuck or slipping ±
+
+
+@pytest.mark.parametrize("offset", [0.1, -0.1], ids=["flush right, slides inwards", "flush left, slides outwards"])
+def test_a_block_flush_with_the_edge_below(offset):
+    """The squat block of the test above, placed with a corner flush with the plinth's edge
+    (offset ±0.1 m: 0.1 + 0.2 = 0.3 m, in floating point a hair past it). Sliding away from that
+    edge it crosses the plinth, 0.2 m, and stops at the far edge at ½(A − μg)t² = 0.2 m; sliding
+    over that edge it is past it at once. (Before, the rounding of o ± b made the flush corner the
+    plinth's: the first case stopped at 2e-9 s, the second slid off unnoticed.)"""
+    a, mu = 0.5 * G, 0.1
+    stack = Stack(blocks=(Block(width=0.6, height=0.3, mass=500.0), Block(width=0.4, height=0.2, mass=20.0, offset=offset)),
+                  interfaces=(Interface(), Interface(friction=Friction(static=mu, kinetic=mu))))
+    r = simulate_stack(stack, rocking.RectanglePulse(amplitude=a, width=2.0), duration=2.0, options={"gravity": G})
+    assert r.status == "slid_past_edge"
+    if offset > 0:
+        assert abs(r.end_time - math.sqrt(2 * 0.2 / (a - mu * G))) < 1e-9
+        assert abs(r.blocks[1]["residual_sliding"] + 0.2) < 1e-9
+    else:
+        assert r.end_time == 0.0 and r.blocks[1]["peak_sliding"] < 1e-12

@@ -26,9 +26,10 @@ def _num(x: float | None, fmt: str = ".4g") -> str:
 
 
 def outcome_markup(summary: Mapping[str, Any]) -> str:
-    """The verdict of a run as rich markup: red if it overturned, yellow if undetermined, else green."""
+    """The verdict of a run as rich markup: red if it overturned, yellow if undetermined, else green.
+    For a stack, red if any block fell: the top-level keys describe the top block only."""
     text = summary.get("verdict") or ("overturned" if summary["overturned"] else "did not overturn")
-    if summary["overturned"]:
+    if summary["overturned"] or any(b.get("overturned") for b in summary.get("blocks", ())):
         return f"[bold red]{escape(text)}[/]"
     if text.startswith("undetermined"):
         return f"[bold yellow]{escape(text)}[/]"

@@ -468,6 +468,12 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 dop853.dense(y, F, x_hi, ym)
                 guards(P, ends, anchor, nstate, tstate, t + x_hi * hs, ym, loc, gravity, g1, held)
             for j in range(ng):
+                if sub == 1 and j % N_GUARD_SLOTS == G_EDGE and g0[j] <= 0.0 and g1[j] < g0[j]:
+                    # a block placed flush with the edge below that slides outwards: its corner
+                    # passes the edge at once (a guard starting at zero that only falls)
+                    x_first = 0.0
+                    first = j
+                    break
                 if sub == 1 and g0[j] <= 0.0 and g1[j] < 0.0 and _is_slip(j, nstate, tstate):
                     # a slip that runs against its own direction from the start: it stops now
                     x_first = 0.0

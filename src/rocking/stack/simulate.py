@@ -75,9 +75,11 @@ def pack(stack: Stack, impact: str = "coulomb") -> tuple[np.ndarray, np.ndarray,
             P[k, P_CAN_SLIP] = 1.0
         P[k, P_RESTITUTION] = math.nan if iface.restitution is None else float(iface.restitution)
         bu, bl, o = P[k, P_BU], P[k, P_BL], block.offset
-        # each end of the overlap is the inner of the two corners (a tie: the upper one)
-        ends[k, 0] = (END_U, -bu) if o - bu >= -bl else (END_L, -bl)
-        ends[k, 1] = (END_U, bu) if o + bu <= bl else (END_L, bl)
+        # each end of the overlap is the inner of the two corners (a tie: the upper one); a block
+        # placed flush with the edge below is a tie, whatever the rounding of o ± bu says
+        tie = 1e-12 * max(bu, bl)
+        ends[k, 0] = (END_U, -bu) if o - bu >= -bl - tie else (END_L, -bl)
+        ends[k, 1] = (END_U, bu) if o + bu <= bl + tie else (END_L, bl)
         # anchor at the left end: a is that corner's position along the face it touches
         z0[3 * k] = o - bu if ends[k, 0, 0] == END_U else -bl - o
     return P, ends, anchor, z0
