@@ -15,3 +15,7 @@ if [ -n "${1:-}" ]; then
 else
   .venv/bin/python -m pip install --quiet -e .
 fi
+# Compile the solver and the stack engine now (once: numba keeps them on disk; about 40 s and 50 s
+# of one core), so that the first command waits no more than any other. Prints what it does,
+# or nothing when they are compiled already.
+.venv/bin/python -c "from rocking.solver.warmup import main; raise SystemExit(main())"

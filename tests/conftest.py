@@ -19,4 +19,5 @@ def _quiet_first_compile():
     from rocking.solver import warmup
 
     warmup._done = True
+    warmup._stack_done = True  # the same for "compiling the stack engine"
     yield

@@ -272,7 +272,7 @@ def test_cli_out_must_be_a_folder(capsys, short_toml, tmp_path):
 def test_cli_simulation_failure_exits_1(capsys, monkeypatch, short_toml):
     cli_main = importlib.import_module("rocking.cli.main")  # the package attribute `main` is the function
 
-    def fail(cfg):
+    def fail(cfg, **options):
         raise rk.SimulationError("step size underflow")
 
     monkeypatch.setattr(cli_main, "run_response", fail)
@@ -284,7 +284,7 @@ def test_cli_simulation_failure_exits_1(capsys, monkeypatch, short_toml):
 def test_cli_unexpected_error_is_one_line_unless_debugging(capsys, monkeypatch, short_toml):
     cli_main = importlib.import_module("rocking.cli.main")  # the package attribute `main` is the function
 
-    monkeypatch.setattr(cli_main, "run_response", lambda cfg: 1 / 0)
+    monkeypatch.setattr(cli_main, "run_response", lambda cfg, **options: 1 / 0)
     code, _, err = _run_cli(capsys, "run", short_toml)
     assert code == 1
     _assert_one_error_line(err, "ZeroDivisionError", "ROCKING_DEBUG")

@@ -195,7 +195,7 @@ def test_ensure_compiled_says_what_it_does_and_how_long_it_took(cold):
     seconds = warmup.ensure_compiled(stream=buf)
     lines = buf.getvalue().splitlines()
     assert cold == [1] and seconds is not None and seconds >= 0
-    assert lines[0] == ("rocking: compiling the solver (first run on this machine, about 30 s; "
+    assert lines[0] == ("rocking: compiling the solver (first run on this machine, about 40 s; "
                         "cached afterwards)...")
     assert re.fullmatch(r"rocking: solver compiled in \d+ s", lines[1])
     buf2 = io.StringIO()

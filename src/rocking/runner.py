@@ -3,25 +3,33 @@
     >>> import rocking as rk
     >>> rk.run("examples/paper_fig10a.toml")["overturned"]  # doctest: +SKIP
     False
+
+The configuration layer (pydantic) and the stack engine are imported on the first call, not
+with ``import rocking``: a script that only calls :func:`rocking.simulate` never pays for them.
 """
 
 from __future__ import annotations
 
-import os
-from collections.abc import Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from .io.config import Config, StackConfig, load_config
-from .results.response import Response
 from .simulation import simulate
-from .stack import StackResponse, simulate_stack
+
+if TYPE_CHECKING:
+    import os
+    from collections.abc import Mapping
+
+    from .io.config import Config, StackConfig
+    from .results.response import Response
+    from .stack import StackResponse
+
+    ConfigLike = str | os.PathLike[str] | Mapping[str, Any] | Config | StackConfig
 
 __all__ = ["run", "run_response"]
 
-ConfigLike = str | os.PathLike[str] | Mapping[str, Any] | Config | StackConfig
 
-
-def run_response(config: ConfigLike) -> tuple[Config, Response] | tuple[StackConfig, StackResponse]:
+def run_response(
+    config: ConfigLike, *, save: bool = True
+) -> tuple[Config, Response] | tuple[StackConfig, StackResponse]:
     """Load a configuration and simulate it.
 
     Parameters
@@ -29,6 +37,9 @@ def run_response(config: ConfigLike) -> tuple[Config, Response] | tuple[StackCon
     config : path-like, str, mapping, Config or StackConfig
         A TOML file, a dict of the same shape (relative record paths against the
         current directory), or an already loaded configuration.
+    save : bool
+        Keep the time series (default). False keeps only the summary and the events, which is
+        all :func:`run` returns, and skips storing every sample; a stack always keeps its series.
 
     Returns
     -------
@@ -45,11 +56,14 @@ def run_response(config: ConfigLike) -> tuple[Config, Response] | tuple[StackCon
     SimulationError
         If the solver cannot finish.
     """
-    cfg = load_config(config)
-    system, motion, options, duration = cfg.to_specs()
+    from .io.config import StackConfig, load_config_and_specs
+
+    cfg, (system, motion, options, duration) = load_config_and_specs(config)
     if isinstance(cfg, StackConfig):
+        from .stack import simulate_stack
+
         return cfg, simulate_stack(system, motion, duration=duration, options=options)
-    return cfg, simulate(system, motion, duration=duration, options=options)
+    return cfg, simulate(system, motion, duration=duration, options=options, save=save)
 
 
 def run(config: ConfigLike) -> dict[str, Any]:
@@ -72,4 +86,5 @@ def run(config: ConfigLike) -> dict[str, Any]:
         top block at the top level, and every block and interface in ``blocks`` and
         ``interfaces``.
     """
-    return run_response(config)[1].summary()
+    # the summary is computed in the solver: the time series would be built and thrown away
+    return run_response(config, save=False)[1].summary()

@@ -37,7 +37,7 @@ from ..io.output import OUTPUT_FILES, OutputSpaceError, check_output_space, summ
 from ..io.records import RecordError, UnitsConflictError, bundled_records, read_record
 from ..runner import run_response
 from ..simulation import ResourceLimitError, SimulationError
-from ..solver.warmup import ensure_compiled
+from ..solver.warmup import ensure_compiled, ensure_stack_compiled
 from .interrupts import exit_code, signal_name, stop_signals
 from .limits import MAX_SAMPLES_OPTION, ResourceRefused, gif_speed, gif_speed_note, preflight, with_max_samples
 from .progress import delayed_spinner
@@ -161,10 +161,14 @@ def run_command(
         raise InputError("--animate needs --out DIR to write animation.gif into")
     stack = isinstance(cfg, StackConfig)
     preflight(cfg, out=out)  # memory and disk limits, before the solver is compiled or run
-    if not stack:
-        ensure_compiled()  # says so on stderr when the first run on this machine must compile
+    # each says so on stderr when the first run on this machine must compile
+    if stack:
+        ensure_stack_compiled()
+    else:
+        ensure_compiled()
     with delayed_spinner(f"simulating {config.name}", console=_stderr()):
-        cfg, response = run_response(cfg)
+        # without --out only the summary is shown: the time series would be stored for nothing
+        cfg, response = run_response(cfg, save=out is not None)
     if stack:
         from .stack_run import show_stack_run
 
@@ -173,10 +177,11 @@ def run_command(
     if out is not None:
         # the exact count now (events add rows): still nothing written if it does not fit
         check_output_space(len(response.t), out, hint="raise simulation.save_dt or shorten simulation.duration")
-        from ..viz import animate as write_animation
+        draw = None
+        if animate:  # the animation module (and its imports) only when asked for
+            from ..viz import animate as draw
 
-        write_run_files(out, response, lambda: write_outputs(response, out, config=cfg),
-                        write_animation if animate else None)
+        write_run_files(out, response, lambda: write_outputs(response, out, config=cfg), draw)
     # every file written, by name
     wrote = f"wrote {', '.join(OUTPUT_FILES + (('animation.gif',) if animate else ()))} to {out}"
     if as_json:

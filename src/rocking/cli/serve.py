@@ -41,13 +41,13 @@ def serve(
     except ValueError as exc:
         name, _, message = str(exc).partition(" ")
         raise typer.BadParameter(message, param_hint=name) from None
-    from ..solver.warmup import cache_is_warm
+    from ..solver.warmup import TYPICAL_SECONDS, cache_is_warm
 
     if cache_is_warm() is False:
         # the worker processes compile it in the background (web/_preload.py): say why the
         # first run on the page waits
-        typer.echo("rocking: compiling the solver in the background (first run on this machine, about 30 s; "
-                   "cached afterwards); the first run on the page waits for it", err=True)
+        typer.echo(f"rocking: compiling the solver in the background (first run on this machine, about "
+                   f"{TYPICAL_SECONDS} s; cached afterwards); the first run on the page waits for it", err=True)
     try:
         run_server(host, port, settings)
     except OSError as exc:

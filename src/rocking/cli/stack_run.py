@@ -104,12 +104,14 @@ def show_stack_run(cfg: Any, response: Any, config: Path, *, out: Path | None, a
         # the exact count now (events add rows): still nothing written if it does not fit
         check_stack_output_space(len(response.t), response.stack.n, out,
                                  hint="raise simulation.save_dt or shorten simulation.duration")
-        from ..viz.stack_animation import animate_stack
         from .main import write_run_files
 
-        draw = (lambda r, path, speed, fps: animate_stack(r, path, speed=speed, fps=fps, title=config.name))
-        write_run_files(out, response, lambda: write_stack_outputs(response, out, config=cfg),
-                        draw if animate else None)
+        draw = None
+        if animate:  # the animation module (and its imports) only when asked for
+            from ..viz.stack_animation import animate_stack
+
+            draw = (lambda r, path, speed, fps: animate_stack(r, path, speed=speed, fps=fps, title=config.name))
+        write_run_files(out, response, lambda: write_stack_outputs(response, out, config=cfg), draw)
     wrote = f"wrote {', '.join(STACK_OUTPUT_FILES + (('animation.gif',) if animate else ()))} to {out}"
     if as_json:
         sys.stdout.write(summary_json(summary) + "\n")

@@ -99,7 +99,7 @@ from ..simulation import Options
 from ..stack.model import Block, Interface, Stack
 from .records import RecordError, UnitsConflictError, bundled_records, read_record, units_to_si
 
-__all__ = ["Config", "ConfigError", "StackConfig", "load_config"]
+__all__ = ["Config", "ConfigError", "StackConfig", "load_config", "load_config_and_specs"]
 
 _DEFAULTS = Options()  # the API's defaults are the config's defaults: one source of truth
 
@@ -632,13 +632,26 @@ def load_config(
     """
     if isinstance(config, (Config, StackConfig)):
         return config
+    return load_config_and_specs(config, base_dir=base_dir)[0]
+
+
+def load_config_and_specs(
+    config: str | os.PathLike[str] | Mapping[str, Any] | Config | StackConfig,
+    *,
+    base_dir: str | os.PathLike[str] | None = None,
+) -> tuple[Config | StackConfig, tuple[Any, Any, Options, float | None]]:
+    """:func:`load_config`, and the API objects (``to_specs()``) its validation built: a run
+    needs them, and building them again costs a tenth of a short simulation."""
+    if isinstance(config, (Config, StackConfig)):
+        return config, config.to_specs()
     if isinstance(config, Mapping):
         source, data = None, config
-        folder = Path(base_dir) if base_dir is not None else Path.cwd()
+        # the working directory is already a physical path: resolving it again costs a tenth of load_config
+        folder = Path(base_dir).resolve() if base_dir is not None else Path.cwd()
     elif isinstance(config, (str, os.PathLike)):
         source = os.fspath(config)
         data = _read_toml(Path(config), source)
-        folder = Path(base_dir) if base_dir is not None else Path(config).resolve().parent
+        folder = Path(base_dir).resolve() if base_dir is not None else Path(config).resolve().parent
     else:
         raise ConfigError(
             [(None, f"a config is a TOML path or a dict, got {type(config).__name__}")]
@@ -649,9 +662,9 @@ def load_config(
     except ValidationError as exc:
         raise ConfigError([_describe(err, model) for err in exc.errors()], source) from None
     cfg._source = source
-    cfg._base_dir = folder.resolve()
-    cfg.to_specs()  # surface record and spec errors now, not halfway through a batch
-    return cfg
+    cfg._base_dir = folder
+    specs = cfg.to_specs()  # surface record and spec errors now, not halfway through a batch
+    return cfg, specs
 
 
 def _run_model(data: Mapping[str, Any], source: str | None) -> type[Config] | type[StackConfig]:
