@@ -448,3 +448,85 @@ def test_the_chosen_file_survives_an_error(server, browser, tmp_path):
     wait_for(browser, "#verdict")
     motion = browser.find_element(By.ID, "motion").text
     assert "pulse" in motion and "0.500 g" in motion
+
+
+# ---------------------------------------------------------------- a stack of blocks (issue 11 §5)
+def _stack_verdict_by_the_api() -> str:
+    """simulate_stack's verdict for the form's default stack (pedestal and statue) with a vase
+    added, under the Rinaldi record × 0.4 for 8 s."""
+    import rocking as rk
+    from rocking.io.records import read_record
+    from rocking.stack import Block, Interface, Stack, simulate_stack
+
+    stack = Stack(
+        blocks=(Block(name="pedestal", width=0.8, height=0.5, mass=300.0), Block(name="statue", width=0.3, height=1.2,
+                                                                                 mass=100.0),
+                Block(name="vase", width=0.2, height=0.45, mass=8.0, offset=0.05)),
+        interfaces=(Interface(friction=rk.Friction(static=0.3, kinetic=0.25)),
+                    Interface(friction=rk.Friction(static=0.5, kinetic=0.4)),
+                    Interface(friction=rk.Friction(static=0.4, kinetic=0.32), restitution=0.7)))
+    return simulate_stack(stack, read_record(RECORD).scaled(0.4), duration=8.0).verdict
+
+
+def test_blocks_are_added_and_removed(server, browser):
+    from selenium.webdriver.common.by import By
+
+    browser.get(server + "/")
+    assert not browser.find_element(By.ID, "stack-fields").is_displayed()
+    browser.find_element(By.ID, "mode-stack").click()
+    assert browser.find_element(By.ID, "stack-fields").is_displayed()
+    assert not browser.find_element(By.ID, "statue-fields").is_displayed()
+    assert not browser.find_element(By.ID, "sweep-fields").is_displayed()
+    shown = lambda: [k for k in range(1, 7) if browser.find_element(By.ID, f"block{k}").is_displayed()]  # noqa: E731
+    assert shown() == [1, 2]
+    click(browser, "add-block")
+    assert shown() == [1, 2, 3] and browser.find_element(By.ID, "block3_name").get_attribute("value") == "vase"
+    assert browser.find_element(By.ID, "block-count").text == "3 of at most 6 blocks"
+    # removing block 1: the statue and the vase move down one place, their values with them
+    button = browser.find_element(By.CSS_SELECTOR, "#block1 button.remove")
+    browser.execute_script("arguments[0].scrollIntoView({block: 'center'});", button)
+    button.click()
+    assert shown() == [1, 2]
+    assert browser.find_element(By.ID, "block1_name").get_attribute("value") == "statue"
+    assert browser.find_element(By.ID, "block2_width").get_attribute("value") == "0.2"
+    assert browser.find_element(By.ID, "block3_name").get_attribute("value") == ""
+    assert browser.find_element(By.ID, "stack_blocks").get_attribute("value") == "2"
+    for _ in range(5):
+        click(browser, "add-block")
+    assert shown() == [1, 2, 3, 4, 5, 6] and not browser.find_element(By.ID, "add-block").is_enabled()
+    browser.find_element(By.ID, "mode-statue").click()
+    assert browser.find_element(By.ID, "statue-fields").is_displayed()
+    assert not browser.find_element(By.ID, "stack-fields").is_displayed()
+
+
+@pytest.mark.parametrize(("width", "height"), SIZES)
+def test_the_stack_mode_fits_the_screen_and_shows_the_verdict_after_a_run(server, browser, sized, width, height):
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.support.ui import WebDriverWait
+
+    sized(width, height)
+    browser.get(server + "/")
+    browser.find_element(By.ID, "mode-stack").click()
+    click(browser, "add-block")  # the vase on the statue
+    choose_record(browser, RECORD)
+    fill(browser, {"scale_value": "0.4", "duration": "8"})
+    scroll_width, inner = widths(browser)
+    assert inner == width and scroll_width <= inner, (scroll_width, inner)
+    ARTIFACTS.mkdir(exist_ok=True)
+    full_page_screenshot(browser, ARTIFACTS / f"web-stack-{width}-form.png")
+    click(browser, "run")
+    shown = wait_for(browser, "#verdict")
+    WebDriverWait(browser, 60).until(lambda d: images_loaded(d))
+    assert " ".join(shown.get_attribute("textContent").split()) == _stack_verdict_by_the_api()
+    assert in_view(browser, "verdict")
+    scroll_width, inner = widths(browser)
+    assert inner == width and scroll_width <= inner, (scroll_width, inner)
+    rows = browser.find_elements(By.CSS_SELECTOR, "#blocks tr[data-values]")
+    assert [r.find_element(By.TAG_NAME, "td").text for r in rows] == ["pedestal", "statue", "vase"]
+    # every table fits its card: no column hidden behind a scroll bar, even on a phone
+    assert browser.execute_script(
+        "var card = document.getElementById('result').getBoundingClientRect();"
+        "return ['summary', 'motion', 'blocks', 'interfaces'].every(function (id) {"
+        "  var r = document.getElementById(id).getBoundingClientRect();"
+        "  return r.left >= card.left - 1 && r.right <= card.right + 1; });")
+    full_page_screenshot(browser, ARTIFACTS / f"web-stack-{width}-result.png")

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import io
 import json
+import math
 import re
 import threading
 import time
@@ -610,3 +611,118 @@ def test_sweep_report_has_the_chart_and_table_and_no_server_details(tmp_path):
         assert leak not in text, leak
     assert "my_record" in text  # the record is still named
     assert (tmp_path / "out" / "report.pdf").stat().st_size > 10_000
+
+
+# ------------------------------------------------------------------- a stack of blocks (issue 11 §5)
+#: examples/stack_three_blocks.toml under the Rinaldi record at full scale, as the form sends it.
+STACK_FORM = {
+    "mode": "stack", "stack_blocks": "3", "record": RECORD, "scale_kind": "factor", "scale_value": "1", "duration": "8",
+    "block1_name": "plinth", "block1_width": "1.0", "block1_height": "0.6", "block1_mass": "800",
+    "block1_mu_s": "0.6", "block1_mu_k": "0.5",
+    "block2_name": "statue", "block2_width": "0.4", "block2_height": "1.4", "block2_mass": "250", "block2_mu_s": "0.6",
+    "block3_name": "vase", "block3_width": "0.2", "block3_height": "0.45", "block3_mass": "8", "block3_offset": "0.05",
+    "block3_mu_s": "0.4", "block3_mu_k": "0.32", "block3_restitution": "0.7",
+}
+
+
+def _same_stack_by_the_api():
+    from rocking.stack import Block, Interface, Stack, simulate_stack
+
+    stack = Stack(
+        blocks=(Block(name="plinth", width=1.0, height=0.6, mass=800.0),
+                Block(name="statue", width=0.4, height=1.4, mass=250.0),
+                Block(name="vase", width=0.2, height=0.45, mass=8.0, offset=0.05)),
+        interfaces=(Interface(friction=rk.Friction(static=0.6, kinetic=0.5)),
+                    Interface(friction=rk.Friction(static=0.6)),
+                    Interface(friction=rk.Friction(static=0.4, kinetic=0.32), restitution=0.7)))
+    from rocking.io.records import read_record
+
+    return simulate_stack(stack, read_record(RECORD).scaled(1.0), duration=8.0)
+
+
+def _rows(html: str, table_id: str) -> list[tuple[list[str], dict]]:
+    """(cell texts, data-values) of each body row of a table of the page."""
+    table = re.search(rf'<table id="{table_id}"[^>]*>(.*?)</table>', html, re.S).group(1)
+    out = []
+    for attrs, body in re.findall(r"<tr([^>]*)>(.*?)</tr>", table, re.S):
+        values = re.search(r'data-values="([^"]*)"', attrs)
+        if values:
+            cells = [" ".join(unescape(re.sub(r"<[^>]+>", "", c)).split()) for c in re.findall(r"<td[^>]*>(.*?)</td>",
+                                                                                               body, re.S)]
+            out.append((cells, json.loads(unescape(values.group(1)))))
+    return out
+
+
+def test_the_page_offers_a_stack_mode_and_keeps_the_statue_as_default(client):
+    html = client.get("/").get_data(as_text=True)
+    assert re.search(r'id="mode-statue" name="mode" type="radio" value="statue" checked', html)
+    assert 'id="mode-stack" name="mode" type="radio" value="stack">' in html
+    assert re.search(r'<fieldset id="stack-fields" hidden>', html) and '<fieldset id="statue-fields">' in html
+    for k in range(1, 7):  # up to MAX_BLOCKS = 6 blocks, the first two shown
+        assert f'name="block{k}_width"' in html and f'name="block{k}_restitution"' in html
+    assert '<fieldset class="block" id="block2">' in html and '<fieldset class="block" id="block3" hidden>' in html
+    assert 'name="block7_width"' not in html
+
+
+def test_a_stack_run_shows_the_verdict_of_simulate_stack_and_a_row_per_block(client):
+    r = client.post("/run", data=STACK_FORM)
+    html = r.get_data(as_text=True)
+    assert r.status_code == 200, text_of(html, "error")
+    expected = _same_stack_by_the_api()
+    fell = expected.blocks[1]["overturn_time"]
+    assert text_of(html, "verdict") == expected.verdict == f"statue overturned at t = {fell:.3f} s"
+    assert 'class="verdict stack fails"' in html
+    blocks = _rows(html, "blocks")
+    assert [cells[0] for cells, _ in blocks] == ["plinth", "statue", "vase"]
+    for (cells, shown), b in zip(blocks, expected.blocks):
+        assert shown["overturned"] is b["overturned"]
+        for key in ("peak_rotation", "peak_sliding", "residual_sliding"):
+            assert shown[key] == pytest.approx(b[key], rel=1e-9, abs=1e-12), key
+        assert cells[2] == f"{round(math.degrees(b['peak_rotation']), 2) + 0.0:.2f}"
+    interfaces = _rows(html, "interfaces")
+    assert [cells[0] for cells, _ in interfaces] == ["floor–plinth", "plinth–statue", "statue–vase"]
+    assert [cells[2] for cells, _ in interfaces] == ["0.6", "0.6", "0.4"]
+    for (_, shown), f in zip(interfaces, expected.interfaces):
+        assert shown["required_friction"] == pytest.approx(f["required_friction"], rel=1e-9)
+        assert shown["impacts"] == f["impacts"]
+    assert values_of(html)["impacts"] == expected.summary()["impacts"]
+    for element, kind in (("animation", "image/gif"), ("response-plot", "image/png"), ("energy-plot", "image/png")):
+        src = re.search(rf'id="{element}"[^>]*src="([^"]+)"', html).group(1)
+        pic = client.get(src)
+        assert pic.status_code == 200 and pic.mimetype == kind and len(pic.data) > 1000
+    # the form stays in stack mode with the blocks typed, and the permalink shows the same
+    assert 'id="mode-stack" name="mode" type="radio" value="stack" checked' in html
+    assert 'name="block3_offset" type="text" inputmode="decimal" value="0.05"' in html
+    link = re.search(r'id="permalink" href="([^"]+)"', html).group(1)
+    again = client.get(link).get_data(as_text=True)
+    assert text_of(again, "verdict") == expected.verdict and len(_rows(again, "blocks")) == 3
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        ({"block2_width": "-1"}, "block 2 width: must be > 0, got -1.0"),
+        ({"block2_width": "wide"}, "block 2 width: enter a number, got 'wide'"),
+        ({"block1_mass": ""}, "block 1 mass: required"),
+        ({"block3_mu_s": "0.3", "block3_mu_k": "0.5"}, "block 3 friction μk: must be <= static (0.3), got 0.5"),
+        ({"block3_restitution": "1.5"}, "block 3 restitution r: must be <= 1, got 1.5"),
+        ({"block2_offset": "2"}, "block 2 offset: leaves no overlap with block 1 (plinth) below"),
+        ({"block3_name": "statue"}, "block 3 name: 'statue' is already the name of block 2"),
+        ({"stack_blocks": "4"}, "block 4 width: required"),
+        ({"stack_blocks": "7"}, "number of blocks: must be a whole number from 1 to 6, got '7'"),
+    ],
+)
+def test_stack_form_errors_name_the_block_and_field(client, change, message):
+    r = client.post("/run", data={**STACK_FORM, **change})
+    html = r.get_data(as_text=True)
+    assert r.status_code == 400
+    assert message in text_of(html, "error")
+    assert "blocks[" not in text_of(html, "error") and 'id="verdict"' not in html
+    assert 'id="mode-stack" name="mode" type="radio" value="stack" checked' in html  # still in stack mode
+
+
+def test_the_design_sweep_is_for_a_statue_on_its_pedestal(client):
+    r = client.post("/sweep", data={**STACK_FORM, "sweep_from": "0.1", "sweep_to": "0.4", "sweep_points": "4"})
+    assert r.status_code == 400
+    assert "the design sweep varies the floor friction of a statue's pedestal" in text_of(r.get_data(as_text=True),
+                                                                                          "error")

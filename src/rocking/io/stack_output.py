@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from .output import OutputSpaceError, _envelope, _existing_folder, human_bytes, summary_json, write_files
+from .output import OutputSpaceError, _existing_folder, human_bytes, summary_json, write_files
 
 __all__ = ["STACK_OUTPUT_FILES", "check_stack_output_space", "csv_header", "estimate_stack_output_bytes",
            "plot_stack_response", "write_stack_outputs"]
@@ -65,29 +65,15 @@ def _write_csv(response: Any, path: Path) -> None:
 
 
 def plot_stack_response(response: Any, path: str | os.PathLike[str], *, title: str | None = None) -> None:
-    """Save a two-panel figure: each block's rotation φ relative to the block below (degrees) and
-    its slide along that block's face (mm) versus t (s); a dashed line where a block overturned."""
+    """Save :func:`rocking.viz.stack_plots.plot_stack_response` (each block's rotation φ on the
+    block below, in degrees, and its slide along that block's face, in mm, versus t in s; a dashed
+    line where a block overturned) to ``path``, headed by ``title`` (default: the verdict)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
 
-    t = np.asarray(response.t, dtype=float)
-    fig = Figure(figsize=(8.0, 6.0), layout="constrained")
+    from ..viz.stack_plots import plot_stack_response as draw
+
+    fig = draw(response, title=title or response.verdict)
     FigureCanvasAgg(fig)
-    ax_phi, ax_u = fig.subplots(2, 1, sharex=True)
-    for k, (name, block) in enumerate(zip(response.stack.names, response.blocks)):
-        color = f"C{k % 10}"
-        ax_phi.plot(*_envelope(t, np.degrees(np.asarray(response.rotation)[:, k])), color=color, lw=0.9, label=name)
-        ax_u.plot(*_envelope(t, 1e3 * np.asarray(response.sliding)[:, k]), color=color, lw=0.9)
-        if block.get("overturned") and block.get("overturn_time") is not None:
-            for ax in (ax_phi, ax_u):
-                ax.axvline(block["overturn_time"], color=color, ls="--", lw=1.0)
-    ax_phi.set_ylabel("φ, rotation on what is below (°)")
-    ax_phi.legend(loc="upper right", fontsize="small", ncol=min(4, len(response.blocks)), framealpha=0.8)
-    ax_u.set_ylabel("sliding on what is below (mm)")
-    ax_u.set_xlabel("t (s)")
-    if t.size:
-        ax_u.set_xlim(t[0], t[-1])
-    fig.suptitle(title or response.verdict, fontsize="medium")
     fig.savefig(path, dpi=120)
 
 

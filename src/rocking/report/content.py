@@ -70,6 +70,20 @@ class Provenance:
         return f"rocking {self.version} · {self.date} · {self.input_name} · {digest}"
 
 
+@dataclass(frozen=True)
+class DataTable:
+    """A table with a header row and several columns (a row per block of a stack, say):
+    ``heading``, ``header`` (column names), ``rows`` (strings), ``widths`` (relative widths of
+    the columns in the PDF) and ``place``: "results" (after the key figures) or "inputs" (first
+    in the inputs)."""
+
+    heading: str
+    header: tuple[str, ...]
+    rows: tuple[tuple[str, ...], ...]
+    widths: tuple[float, ...]
+    place: str = "results"
+
+
 @dataclass
 class ReportContent:
     """Everything a report shows, as plain strings (format-independent)."""
@@ -86,6 +100,12 @@ class ReportContent:
     figures: list[FigureText] = field(default_factory=list)
     symbols: Rows = field(default_factory=list)
     provenance: Provenance | None = None
+    tables: list[DataTable] = field(default_factory=list)
+    event_header: tuple[str, ...] = ("t (s)", "event", "before", "after")
+
+    def tables_at(self, place: str) -> list[DataTable]:
+        """The tables shown at ``place`` ("results" or "inputs"), in order."""
+        return [t for t in self.tables if t.place == place]
 
 
 # --------------------------------------------------------------------------------- numbers
@@ -175,7 +195,7 @@ def _friction(fr) -> str:
     return f"μs = {fr.mu_s:g}, μk = {fr.mu_k:g}"
 
 
-def _motion_rows(motion, response) -> Rows:
+def _motion_rows(motion, gravity: float) -> Rows:
     name = type(motion).__name__
     rows: Rows = [("kind", name)]
     if name == "GroundMotion":
@@ -184,7 +204,7 @@ def _motion_rows(motion, response) -> Rows:
             ("source", str(getattr(motion, "source", "") or "—")),
             ("samples", f"{motion.n} at Δt = {motion.dt:g} s"),
             ("record duration", f"{motion.duration:.2f} s"),
-            ("PGA", f"{motion.pga:.3f} m/s² ({motion.pga / response.options.gravity:.3f} g)"),
+            ("PGA", f"{motion.pga:.3f} m/s² ({motion.pga / gravity:.3f} g)"),
             ("PGV", f"{motion.pgv:.3f} m/s"),
         ]
         if getattr(motion, "vertical", None) is not None:
@@ -200,7 +220,7 @@ def _motion_rows(motion, response) -> Rows:
             rows.append((f.name.replace("_", " "), f"{v:g} {units.get(f.name, '')}".strip()
                          if isinstance(v, (int, float)) else str(v)))
     try:
-        rows.append(("PGA", f"{motion.pga:.3f} m/s² ({motion.pga / response.options.gravity:.3f} g)"))
+        rows.append(("PGA", f"{motion.pga:.3f} m/s² ({motion.pga / gravity:.3f} g)"))
     except Exception:  # pragma: no cover - a motion without pga
         pass
     rows.append(("motion duration", f"{motion.duration:.2f} s"))
@@ -241,7 +261,7 @@ def describe_inputs(response, config: Any = None) -> dict[str, Rows]:
         out["Pedestal"] = rows
     else:
         out["Pedestal"] = [("pedestal", "none: the statue stands on the floor")]
-    out["Motion"] = _motion_rows(response.motion, response)
+    out["Motion"] = _motion_rows(response.motion, g)
     out["Options"] = [
         ("simulated", f"until t = {response.end_time:.3f} s (" + (
             f"simulation.duration = {response.duration:g} s" if response.duration_given

@@ -7,7 +7,7 @@ import io
 from html import escape
 from pathlib import Path
 
-from .content import FAIL, NOT_APPLICABLE, NOT_CHECKED, PASS, UNDETERMINED, ReportContent
+from .content import FAIL, NOT_APPLICABLE, NOT_CHECKED, PASS, UNDETERMINED, DataTable, ReportContent
 
 _RESULT_CLASSES = {PASS: ("pass", "pass"), FAIL: ("fail", "fail"), UNDETERMINED: ("undetermined", "undetermined"),
                    NOT_CHECKED: ("not-checked", "not checked"), NOT_APPLICABLE: ("na", "n/a")}
@@ -34,8 +34,11 @@ td.fail { color: #c0392b; font-weight: 700; text-transform: uppercase; }
 td.undetermined { color: #b36b00; font-weight: 600; }
 td.not-checked, td.na { color: #777; }
 td.symbol { font-weight: 600; white-space: nowrap; }
+.wide { max-width: 100%; overflow-x: auto; }
+table.data td, table.data th { padding-right: 1.1em; }
 .inputs { display: grid; grid-template-columns: repeat(auto-fit, minmax(min(420px, 100%), 1fr)); gap: 0 2em; }
-@media (max-width: 600px) { td.name { min-width: 7em; } td, th { padding-right: 0.5em; } }
+@media (max-width: 600px) { td.name { min-width: 7em; } td, th { padding-right: 0.5em; }
+  table.checks { font-size: 0.78em; } table.checks td, table.checks th { padding-right: 0.4em; } }
 figure { margin: 1em 0; }
 figure img { max-width: 100%; height: auto; border: 1px solid #eee; }
 figcaption { font-size: 0.9em; color: #555; }
@@ -64,13 +67,23 @@ def _checks(content: ReportContent) -> str:
         klass, text = _RESULT_CLASSES[c.result]
         rows.append(f"<tr><td>{escape(c.name)}</td><td>{escape(c.value)}</td><td>{escape(c.limit)}</td>"
                     f'<td class="result {klass}">{escape(text)}</td></tr>')
-    return ('<table><tr><th>check</th><th>value</th><th>limit</th><th class="result">result</th></tr>\n'
-            + "\n".join(rows) + "</table>")
+    return ('<div class="wide"><table class="checks"><tr><th>check</th><th>value</th><th>limit</th>'
+            '<th class="result">result</th></tr>\n' + "\n".join(rows) + "</table></div>")
+
+
+def _data_table(table: DataTable, level: str = "h3") -> str:
+    """A table with a header row; it scrolls inside the page on a narrow screen."""
+    head = "".join(f"<th>{escape(h)}</th>" for h in table.header)
+    body = "\n".join("<tr>" + "".join(f"<td>{escape(c)}</td>" for c in row) + "</tr>" for row in table.rows)
+    return (f"<{level}>{escape(table.heading)}</{level}>\n"
+            f'<div class="wide"><table class="data"><tr>{head}</tr>\n{body}</table></div>')
 
 
 def _figures_and_key_figures(content: ReportContent, images: list[str]) -> str:
-    """Each figure's section; the key figures follow the first (the motion they sum up)."""
+    """Each figure's section; the key figures (and the result tables) follow the first (the
+    motion they sum up)."""
     key_figures = f"<h2>Key figures</h2>\n<table>\n{_rows(content.key_figures)}\n</table>"
+    key_figures += "".join("\n" + _data_table(t) for t in content.tables_at("results"))
     parts = []
     for text, data in zip(content.figures, images):
         parts.append(
@@ -91,6 +104,7 @@ def render_html(content: ReportContent, images: list[str], *, verdict_class: str
         f"<div><h3>{escape(section)}</h3><table>{_rows(rows)}</table></div>"
         for section, rows in content.inputs.items()
     )
+    input_tables = "\n".join(_data_table(t) for t in content.tables_at("inputs"))
     assumptions = "\n".join(f"<li>{escape(a)}</li>" for a in content.assumptions)
     warnings = (
         '<ul class="warnings">' + "\n".join(f"<li>{escape(w)}</li>" for w in content.warnings) + "</ul>"
@@ -104,7 +118,7 @@ def render_html(content: ReportContent, images: list[str], *, verdict_class: str
         )
         events = (
             f"<details><summary>{len(content.events)} event(s)</summary>"
-            "<table><tr><th>t (s)</th><th>event</th><th>before</th><th>after</th></tr>"
+            "<table><tr>" + "".join(f"<th>{escape(h)}</th>" for h in content.event_header) + "</tr>"
             f"{ev}</table></details>"
         )
     else:
@@ -131,6 +145,7 @@ def render_html(content: ReportContent, images: list[str], *, verdict_class: str
 {_figures_and_key_figures(content, images)}
 
 <h2>Inputs</h2>
+{input_tables}
 <div class="inputs">
 {inputs}
 </div>

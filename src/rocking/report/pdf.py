@@ -30,7 +30,7 @@ from matplotlib.patches import Rectangle
 from matplotlib.textpath import TextToPath
 from matplotlib.transforms import Affine2D
 
-from .content import FAIL, NOT_APPLICABLE, NOT_CHECKED, PASS, UNDETERMINED, ReportContent
+from .content import FAIL, NOT_APPLICABLE, NOT_CHECKED, PASS, UNDETERMINED, DataTable, ReportContent
 
 MM = 72 / 25.4
 PAGE_WIDTH, PAGE_HEIGHT = 210 * MM, 297 * MM  # A4
@@ -347,7 +347,7 @@ class Columns(Block):
 COLUMN_GAP = 16.0
 
 
-def _fit_ylabels(fig: Figure) -> None:
+def fit_ylabels(fig: Figure) -> None:
     """Break onto two lines each y label taller than its axes: the labels of stacked panels in a
     short figure would run into each other."""
     canvas = fig.canvas if hasattr(fig.canvas, "get_renderer") else FigureCanvasAgg(fig)
@@ -394,7 +394,7 @@ class FigureBlock(Block):
         image_h = height - self.space_before - self._caption_height() - self.space_after
         image_top = top - self.space_before
         self.figure.set_size_inches(self.width / 72, image_h / 72)
-        _fit_ylabels(self.figure)
+        fit_ylabels(self.figure)
         buf = io.BytesIO()
         self.figure.savefig(buf, format="png", dpi=FIGURE_DPI, metadata={"Software": None})
         buf.seek(0)
@@ -448,6 +448,18 @@ def _inputs(content: ReportContent) -> list[Block]:
     return out
 
 
+def _data_table(table: DataTable) -> list[Block]:
+    """A titled table with a header row (a row per block of a stack, say): under the key figures
+    a sub-heading, among the inputs a heading like theirs."""
+    if table.place == "inputs":
+        title = Heading(text=table.heading, space_before=6.0, space_after=2.0)
+    else:
+        title = Heading(text=table.heading, size=SIZES["body"] + 0.6, rule=False, space_before=4.0, space_after=1.0)
+    return [title,
+            Table(rows=[[Cell(c) for c in row] for row in table.rows], widths=table.widths,
+                  header=list(table.header), space_after=6.0)]
+
+
 def _check_rows(content: ReportContent) -> list[list[Cell]]:
     rows = []
     for c in content.checks:
@@ -476,7 +488,7 @@ def blocks(content: ReportContent, figures: Sequence[Figure], verdict_class: str
         Paragraph(text=content.verdict, size=SIZES["verdict"], bold=True, box=verdict_class,
                   color=VERDICT_COLORS[verdict_class][2], space_after=8.0),
         Heading(text="Checks", space_before=4.0, space_after=2.0),
-        Table(rows=_check_rows(content), widths=(0.4, 0.3, 0.18, 0.12), header=["check", "value", "limit", "result"],
+        Table(rows=_check_rows(content), widths=(0.37, 0.3, 0.18, 0.15), header=["check", "value", "limit", "result"],
               space_after=6.0),
     ]
     # warnings right under the checks: short when all is well, and not to be missed when not
@@ -486,6 +498,8 @@ def blocks(content: ReportContent, figures: Sequence[Figure], verdict_class: str
     else:
         out.append(Paragraph(text="None: every assumption of the model held during the run.", space_after=4.0))
     key_figures = [Heading(text="Key figures", space_before=4.0, space_after=2.0), _table(content.key_figures)]
+    for table in content.tables_at("results"):
+        key_figures += _data_table(table)
     if key_figures_first or not content.figures:
         out += key_figures
     for text, fig in zip(content.figures, figures):
@@ -498,6 +512,8 @@ def blocks(content: ReportContent, figures: Sequence[Figure], verdict_class: str
         ]
         if text.number == 1 and not key_figures_first:  # after the picture of the motion they sum up
             out += key_figures
+    for table in content.tables_at("inputs"):
+        out += _data_table(table)
     out += _inputs(content)
     out.append(Heading(text="Model assumptions", space_before=6.0, space_after=2.0))
     out += [Paragraph(text=a, bullet=True, space_after=2.0) for a in content.assumptions]

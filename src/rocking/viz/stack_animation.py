@@ -3,7 +3,8 @@
 Every block is drawn from its saved pose (centre X, Y and rotation Θ, clockwise positive), so
 whatever the interfaces do — slip, rock, lift off — the picture is the solver's state itself. The
 floor is drawn still (the frame moves with it); the header gives the time, each block's rotation
-on what it stands on, and the verdict once a block has fallen.
+on what it stands on (on as many lines as the names need, a long name cut to 16 characters), and
+the verdict once a block has fallen.
 
     >>> from rocking.viz.stack_animation import animate_stack
     >>> animate_stack(response, "stack.gif")          # doctest: +SKIP
@@ -20,10 +21,11 @@ from matplotlib.patches import Polygon
 
 from .animation import check_animation_path, floor_scene, frame_times, write_frames
 
-__all__ = ["animate_stack", "block_outline"]
+__all__ = ["animate_stack", "block_outline", "header_lines", "short_name"]
 
-#: Fill colours of the blocks, from the floor up (repeated beyond five).
-BLOCK_COLORS = ("#b9a98c", "#8fa7c4", "#c49a8f", "#9cbf95", "#c4b98f")
+#: Fill colours of the blocks, from the floor up (repeated beyond six); the plots draw each block's
+#: lines in a darker shade of its fill (rocking.viz.stack_plots.LINE_COLORS).
+BLOCK_COLORS = ("#b9a98c", "#8fa7c4", "#c49a8f", "#9cbf95", "#c4b98f", "#b7a3c9")
 
 
 def block_outline(x: float, y: float, theta: float, half_width: float, half_height: float) -> np.ndarray:
@@ -32,6 +34,32 @@ def block_outline(x: float, y: float, theta: float, half_width: float, half_heig
                       [-half_width, half_height]])
     c, s = math.cos(theta), math.sin(theta)
     return np.column_stack((x + local[:, 0] * c + local[:, 1] * s, y - local[:, 0] * s + local[:, 1] * c))
+
+
+#: Characters of the header's monospace lines (8 pt on the 6 in wide figure, within its margins).
+_HEADER_CHARS = 80
+#: The longest name the header shows whole.
+_NAME_CHARS = 16
+
+
+def short_name(name: str, limit: int = _NAME_CHARS) -> str:
+    """``name`` cut to ``limit`` characters, its end replaced by "…" when cut."""
+    return name if len(name) <= limit else name[: limit - 1] + "…"
+
+
+def header_lines(names: tuple[str, ...], width: int = _HEADER_CHARS) -> list[list[int]]:
+    """The blocks (indices) on each line of the header's rotations, so that no line holds more
+    than ``width`` characters ("name: +12.3°" each, three spaces apart)."""
+    lines: list[list[int]] = [[]]
+    used = 0
+    for k, name in enumerate(names):
+        need = len(short_name(name)) + 9 + (3 if lines[-1] else 0)
+        if lines[-1] and used + need > width:
+            lines.append([])
+            used, need = 0, need - 3
+        lines[-1].append(k)
+        used += need
+    return lines
 
 
 def _nice_step(rough: float) -> float:
@@ -74,25 +102,29 @@ def animate_stack(response, path: str | os.PathLike[str], *, speed: float = 1.0,
     ax.text(hi - 0.01 * span, -0.62 * ground, "m", fontsize=7, ha="right", va="center", color="0.3")
     patches = []
     for k in range(n):
-        patch = Polygon(block_outline(*pose[0, k], *halves[k]), closed=True, facecolor=BLOCK_COLORS[k % 5],
+        patch = Polygon(block_outline(*pose[0, k], *halves[k]), closed=True,
+                        facecolor=BLOCK_COLORS[k % len(BLOCK_COLORS)],
                         edgecolor="0.2", lw=1.0, zorder=3 + k)
         ax.add_patch(patch)
         patches.append(patch)
     names = response.stack.names
+    lines = header_lines(names)
     txt_t = fig.text(0.03, 0.95, "", fontsize=10, family="monospace", va="center")
-    txt_rot = fig.text(0.03, 0.89, "", fontsize=8, family="monospace", va="center", color="0.25")
+    # the rotations under the time, in as many lines as the names need
+    txt_rot = fig.text(0.03, 0.915, "", fontsize=8, family="monospace", va="top", color="0.25", linespacing=1.25)
     txt_verdict = fig.text(0.97, 0.95, "", fontsize=9, va="center", ha="right",
                            bbox={"boxstyle": "round,pad=0.3", "facecolor": "white", "edgecolor": "0.5"})
-    if title:
-        fig.text(0.97, 0.89, title, fontsize=8, ha="right", va="center", color="0.3")
-    falls = [(b["overturn_time"], b["name"]) for b in response.blocks if b["overturned"]]
+    if title:  # between the time and the verdict, where nothing else is written
+        fig.text(0.5, 0.95, short_name(title, 40), fontsize=8, ha="center", va="center", color="0.3")
+    falls = [(b["overturn_time"], short_name(b["name"])) for b in response.blocks if b["overturned"]]
     first_fall = min(falls) if falls else None
 
     def draw(f: int) -> None:
         for k in range(n):
             patches[k].set_xy(block_outline(*pose[f, k], *halves[k]))
         txt_t.set_text(f"t = {times[f]:6.2f} s")
-        txt_rot.set_text("   ".join(f"{name}: {math.degrees(rotation[f, k]):+5.1f}°" for k, name in enumerate(names)))
+        txt_rot.set_text("\n".join("   ".join(f"{short_name(names[k])}: {math.degrees(rotation[f, k]):+5.1f}°"
+                                              for k in line) for line in lines))
         fallen = first_fall is not None and times[f] >= first_fall[0] - 1e-12
         txt_verdict.set_text(f"{first_fall[1]} overturned" if fallen else "standing")
         txt_verdict.get_bbox_patch().set_facecolor("#f6c9c4" if fallen else "#dff0d8")

@@ -34,7 +34,7 @@ from . import tasks
 from .jobs import DONE, JobRunner
 from .templates import TEMPLATES
 
-__all__ = ["DEFAULTS", "FormError", "create_app", "parse_form"]
+__all__ = ["DEFAULTS", "FormError", "block_field_names", "create_app", "parse_form", "stack_form_defaults"]
 
 log = logging.getLogger("rocking.web")
 
@@ -44,6 +44,7 @@ DEFAULTS: dict[str, Any] = {
     "SWEEP_TIMEOUT": 600.0,  # s, one design sweep with its report
     "MAX_UPLOAD": 5 * 1024 * 1024,  # bytes of an uploaded record
     "MAX_SWEEP_POINTS": 41,  # values of μs in one design sweep (the grid)
+    "MAX_BLOCKS": 6,  # blocks of a stack the form offers
     "MAX_DURATION": 600.0,  # s, the longest a run may last (the record and the free motion after it)
     "MAX_SAMPLES": 1_000_000,  # saved samples of one run (simulation.max_samples): ~40 MB, plots included < 0.5 GB
     "MAX_JOBS_PER_CLIENT": 2,  # runs and sweeps at once from one address (at most MAX_WORKERS - 1)
@@ -58,6 +59,8 @@ DEFAULTS: dict[str, Any] = {
 }
 
 _FORM_DEFAULTS = {
+    "mode": "statue",
+    "stack_blocks": "2",
     "record": "Northridge1994_RinaldiReceivingSta_228",
     "format": "",
     "units": "",
@@ -82,6 +85,38 @@ _FORM_DEFAULTS = {
     "sweep_sliding_limit": "",
     "sweep_scatter": "0.2",
 }
+
+#: What stands on the floor: the form's two modes.
+_MODES = [("statue", "a statue, alone or on a pedestal"), ("stack", "a stack of blocks")]
+
+#: The fields of each block of a stack (block<k>_<field>); friction and restitution are those of
+#: the interface under the block.
+_BLOCK_FIELDS = ("name", "width", "height", "mass", "offset", "mu_s", "mu_k", "restitution")
+
+#: The stack the form starts with (examples/stack_statue_on_pedestal.toml, and a vase to add).
+_STACK_DEFAULTS = (
+    {"name": "pedestal", "width": "0.8", "height": "0.5", "mass": "300", "mu_s": "0.3", "mu_k": "0.25"},
+    {"name": "statue", "width": "0.3", "height": "1.2", "mass": "100", "mu_s": "0.5", "mu_k": "0.4"},
+    {"name": "vase", "width": "0.2", "height": "0.45", "mass": "8", "offset": "0.05", "mu_s": "0.4", "mu_k": "0.32",
+     "restitution": "0.7"},
+)
+
+#: The longest name of a block the form takes (it heads table rows and the animation's header).
+_MAX_NAME = 40
+
+
+def block_field_names(max_blocks: int) -> list[str]:
+    """The form's names of every block field, block1_name … block<max_blocks>_restitution."""
+    return [f"block{k}_{f}" for k in range(1, max_blocks + 1) for f in _BLOCK_FIELDS]
+
+
+def stack_form_defaults(max_blocks: int) -> dict[str, str]:
+    """The block fields as the form first shows them."""
+    out = dict.fromkeys(block_field_names(max_blocks), "")
+    for k, block in enumerate(_STACK_DEFAULTS[:max_blocks], start=1):
+        out.update({f"block{k}_{f}": v for f, v in block.items()})
+    return out
+
 
 _FORMATS = [("", "detect"), ("peer", "PEER AT2"), ("esm", "ESM ASCII"), ("two-column", "two-column text")]
 _UNITS = [("", "from the file"), ("g", "g"), ("cm/s2", "cm/s² (gal)"), ("m/s2", "m/s²"), ("mm/s2", "mm/s²")]
@@ -296,15 +331,18 @@ def _friction(form: Mapping[str, Any], prefix: str, label: str, problems: list[s
     return out
 
 
-def parse_form(form: Mapping[str, Any], record_path: str | None = None) -> dict[str, Any]:
-    """The run configuration (a dict for :func:`rocking.io.config.load_config`) of the form.
+def parse_form(form: Mapping[str, Any], record_path: str | None = None, *, max_blocks: int = 6) -> dict[str, Any]:
+    """The run configuration (a dict for :func:`rocking.io.config.load_config`) of the form: a
+    statue (alone or on a pedestal), or with ``mode = "stack"`` a stack of blocks.
 
     Parameters
     ----------
     form : mapping
-        The submitted fields (see ``_FORM_DEFAULTS`` for the names).
+        The submitted fields (see ``_FORM_DEFAULTS`` and :func:`block_field_names` for the names).
     record_path : str, optional
         An uploaded record saved on disk; replaces the bundled record of the form.
+    max_blocks : int
+        The most blocks a stack may have.
 
     Raises
     ------
@@ -312,6 +350,54 @@ def parse_form(form: Mapping[str, Any], record_path: str | None = None) -> dict[
         One line naming every field that is missing or not a number.
     """
     problems: list[str] = []
+    mode = _text(form, "mode") or "statue"
+    if mode not in {m for m, _ in _MODES}:
+        problems.append(f"mode: unknown choice {mode!r}")
+        cfg: dict[str, Any] = {}
+    elif mode == "stack":
+        cfg = _parse_stack(form, problems, max_blocks)
+    else:
+        cfg = _parse_statue(form, problems)
+    cfg.update(_parse_motion(form, record_path, problems))
+    if problems:
+        raise FormError("; ".join(problems))
+    return cfg
+
+
+def _parse_stack(form: Mapping[str, Any], problems: list[str], max_blocks: int) -> dict[str, Any]:
+    """``blocks`` and ``interfaces`` of the form's stack (the interface under each block)."""
+    raw = _text(form, "stack_blocks")
+    if not raw.isdigit() or not 1 <= int(raw) <= max_blocks:
+        problems.append(f"number of blocks: must be a whole number from 1 to {max_blocks}, got {raw!r}")
+        return {}
+    blocks, interfaces = [], []
+    for k in range(1, int(raw) + 1):
+        prefix, label = f"block{k}", f"block {k}"
+        block: dict[str, Any] = {}
+        name = _text(form, f"{prefix}_name")
+        if len(name) > _MAX_NAME:
+            problems.append(f"{label} name: at most {_MAX_NAME} characters, got {len(name)}")
+        elif name:
+            block["name"] = name
+        for key in ("width", "height", "mass"):
+            block[key] = _number(form, f"{prefix}_{key}", f"{label} {key}", problems, required=True)
+        offset = _number(form, f"{prefix}_offset", f"{label} offset", problems, required=False)
+        if offset is not None:
+            block["offset"] = offset
+        interface: dict[str, Any] = {}
+        friction = _friction(form, prefix, f"{label} friction", problems, required=False)
+        if friction is not None:
+            interface["friction"] = friction
+        r = _number(form, f"{prefix}_restitution", f"{label} restitution r", problems, required=False)
+        if r is not None:
+            interface["restitution"] = r
+        blocks.append(block)
+        interfaces.append(interface)
+    return {"blocks": blocks, "interfaces": interfaces}
+
+
+def _parse_statue(form: Mapping[str, Any], problems: list[str]) -> dict[str, Any]:
+    """``statue`` (and ``pedestal`` when its box is ticked) of the form."""
     statue: dict[str, Any] = {}
     for key, label in (("width", "statue width B"), ("height", "statue height H"), ("mass", "statue mass")):
         statue[key] = _number(form, f"statue_{key}", label, problems, required=True)
@@ -331,7 +417,12 @@ def parse_form(form: Mapping[str, Any], record_path: str | None = None) -> dict[
             if v is not None:
                 ped[key] = v
         cfg["pedestal"] = ped
+    return cfg
 
+
+def _parse_motion(form: Mapping[str, Any], record_path: str | None, problems: list[str]) -> dict[str, Any]:
+    """``motion`` (and ``simulation`` with a duration) of the form."""
+    cfg: dict[str, Any] = {}
     motion: dict[str, Any] = {"kind": "record"}
     if record_path is not None:
         motion["path"] = record_path
@@ -363,8 +454,6 @@ def parse_form(form: Mapping[str, Any], record_path: str | None = None) -> dict[
     duration = _number(form, "duration", "duration", problems, required=False)
     if duration is not None:
         cfg["simulation"] = {"duration": duration}
-    if problems:
-        raise FormError("; ".join(problems))
     return cfg
 
 
@@ -441,10 +530,34 @@ def looks_binary(path: Path, probe: int = 65536) -> bool:
     return len(head) > 0 and sum(head.count(bytes([c])) for c in _CONTROL_BYTES) > 0.01 * len(head)
 
 
+#: The words of a stack's interface fields on the form (the friction under block k is block k's).
+_INTERFACE_WORDS = {"friction.static": "friction μs", "friction.kinetic": "friction μk", "friction": "friction",
+                    "restitution": "restitution r"}
+
+
+def _stack_label(field: str) -> str | None:
+    """The form's label of a stack's configuration field: blocks[1].width → "block 2 width",
+    interfaces[0].friction.static → "block 1 friction μs"; None for another field."""
+    m = re.fullmatch(r"(blocks|interfaces)\[(\d+)\](?:\.(.+))?", field)
+    if m is None:
+        return None
+    k = int(m.group(2)) + 1
+    rest = m.group(3) or ""
+    if m.group(1) == "blocks":
+        return f"block {k} {rest}".strip()
+    return f"block {k} {_INTERFACE_WORDS.get(rest, rest)}".strip()
+
+
+def _block_words(message: str) -> str:
+    """A configuration message's blocks[i] in the form's words, block i+1."""
+    return re.sub(r"\bblocks\[(\d+)\]", lambda m: f"block {int(m.group(1)) + 1}", message)
+
+
 def _config_message(exc: ConfigError, hide: str | None) -> str:
     parts = []
     for fld, msg in exc.problems:
-        label = _LABELS.get(fld or "", fld)
+        label = _stack_label(fld or "") or _LABELS.get(fld or "", fld)
+        msg = _block_words(msg)
         parts.append(f"{label}: {msg}" if label else msg)
     return _hide_path(" ".join("; ".join(parts).split()), hide)
 
@@ -499,12 +612,77 @@ def _residual_row(s: Mapping[str, Any]) -> tuple[str, str, str]:
     return ("residual_sliding", "residual sliding", mm)
 
 
+def _two_decimals(x: Any) -> str:
+    """x with two decimals, never "-0.00" (a residual of −1 µm is no sliding back)."""
+    if x is None or not math.isfinite(x):
+        return "—"
+    return f"{round(x, 2) + 0.0:.2f}"
+
+
+def _mm(x: Any) -> str:
+    return _two_decimals(None if x is None else 1e3 * x)
+
+
+def _degrees(x: Any) -> str:
+    return _two_decimals(None if x is None else math.degrees(x))
+
+
+def stack_summary_rows(s: Mapping[str, Any]) -> list[tuple[str, str, str, str]]:
+    """(id, label, text, JSON value) of a stack run's overall numbers (as ``rocking run`` prints them)."""
+    rows = [
+        ("impacts", "impacts, all interfaces", str(s["impacts"])),
+        ("end_time", "simulated until", _t(s.get("end_time"))),
+        ("status", "status", str(s.get("status"))),
+        ("energy_balance_error", "energy balance error", _num(s.get("energy_balance_error"), ".1e")),
+    ]
+    return [(k, label, text, json.dumps(s.get(k))) for k, label, text in rows]
+
+
+def block_rows(s: Mapping[str, Any]) -> list[dict[str, Any]]:
+    """One row per block, from the floor up: name, whether and when it overturned, peak rotation
+    on what is below (°), peak and residual sliding on it (mm); ``values`` holds the SI numbers."""
+    rows = []
+    for b in s["blocks"]:
+        rows.append({
+            "name": b["name"],
+            "overturned": f"at {b['overturn_time']:.3f} s" if b["overturned"] else "no",
+            "peak_rotation": _degrees(b["peak_rotation"]),
+            "peak_sliding": _mm(b["peak_sliding"]),
+            "residual_sliding": _mm(b["residual_sliding"]),
+            "values": json.dumps({k: b[k] for k in ("overturned", "overturn_time", "peak_rotation", "peak_sliding",
+                                                    "residual_sliding")}),
+        })
+    return rows
+
+
+def interface_rows(s: Mapping[str, Any], frictions: list[float | None]) -> list[dict[str, Any]]:
+    """One row per interface, from the floor up: the friction it needed, the μs given (or "never
+    slips"), its slip path (mm) and impacts."""
+    rows = []
+    for f, mu in zip(s["interfaces"], frictions):
+        rows.append({
+            "name": f["name"],
+            "required_friction": _num(f["required_friction"], ".3f"),
+            "given": "never slips" if mu is None else _num(mu, ".3g"),
+            "slip_path": _mm(f["slip_path"]),
+            "impacts": str(f.get("impacts", "—")),
+            "values": json.dumps({"required_friction": f["required_friction"], "slip_path": f["slip_path"],
+                                  "impacts": f.get("impacts")}),
+        })
+    return rows
+
+
 def _page_result(run_id: str, result: Mapping[str, Any], labels: Mapping[str, str] | None = None) -> dict[str, Any]:
     """The run's result as the templates use it; ``labels`` name bundled records by event and
     station instead of their file stem."""
     s = result["summary"]
-    klass = "fails" if s["overturned"] else ("safe" if s.get("status") == "completed" else "stopped")
     motion = [(k, (labels or {}).get(v, v) if k == "record" else v) for k, v in result["motion"]]
+    if result.get("kind") == "stack":
+        fell = any(b["overturned"] for b in s["blocks"])  # the top-level keys describe the top block only
+        klass = "fails" if fell else ("stopped" if s["verdict"].startswith("undetermined") else "safe")
+        return {**result, "id": run_id, "rows": stack_summary_rows(s), "verdict_class": klass, "motion": motion,
+                "block_rows": block_rows(s), "interface_rows": interface_rows(s, result["frictions"])}
+    klass = "fails" if s["overturned"] else ("safe" if s.get("status") == "completed" else "stopped")
     return {**result, "id": run_id, "rows": summary_rows(s), "verdict_class": klass, "motion": motion}
 
 
@@ -596,14 +774,24 @@ def create_app(settings: Mapping[str, Any] | None = None) -> Flask:
     state = _State(cfg)
     app.extensions["rocking"] = state
 
+    max_blocks = int(cfg["MAX_BLOCKS"])
+    block_fields = block_field_names(max_blocks)
+
     def page(status: int = 200, *, form: Mapping[str, Any] | None = None, **kw: Any):
-        values = dict(_FORM_DEFAULTS)
+        values = {**_FORM_DEFAULTS, **stack_form_defaults(max_blocks)}
         if form is not None:
-            values.update({k: _text(form, k) for k in _FORM_DEFAULTS if k in form})
+            values.update({k: _text(form, k) for k in (*_FORM_DEFAULTS, *block_fields) if k in form})
             values["pedestal"] = _text(form, "pedestal")  # an unticked box is not sent
+        try:
+            shown = min(max(int(values["stack_blocks"]), 1), max_blocks)
+        except ValueError:
+            shown = min(2, max_blocks)
         html = render_template(
             "index.html",
             form=values,
+            modes=_MODES,
+            max_blocks=max_blocks,
+            shown_blocks=shown,
             records=state.records,
             formats=_FORMATS,
             units=_UNITS,
@@ -698,7 +886,7 @@ def create_app(settings: Mapping[str, Any] | None = None) -> Flask:
             if looks_binary(path):
                 raise FormError(f"{name}: not a text record file; upload a PEER AT2, ESM ASCII or two-column text file")
             record_path = str(path)
-        config = parse_form(request.form, record_path)
+        config = parse_form(request.form, record_path, max_blocks=max_blocks)
         # the worker refuses a longer series too (ResourceLimitError), should a record's time step be finer
         config.setdefault("simulation", {})["max_samples"] = int(cfg["MAX_SAMPLES"])
         motion = config["motion"]
@@ -787,6 +975,11 @@ def create_app(settings: Mapping[str, Any] | None = None) -> Flask:
         frictions, sliding_limit, scatter = None, None, None
         if problem is None:
             try:
+                if "blocks" in prepared[2]:
+                    raise FormError(
+                        "the design sweep varies the floor friction of a statue's pedestal: choose "
+                        "'a statue, alone or on a pedestal' and describe the pedestal"
+                    )
                 if "pedestal" not in prepared[2]:
                     raise FormError(
                         "the design sweep varies the pedestal's floor friction: tick "
@@ -804,7 +997,8 @@ def create_app(settings: Mapping[str, Any] | None = None) -> Flask:
         refused = claim_quota(folder)
         if refused is not None:
             return refused
-        state.forms[job_id] = {k: _text(request.form, k) for k in _FORM_DEFAULTS if k in request.form}
+        state.forms[job_id] = {k: _text(request.form, k) for k in (*_FORM_DEFAULTS, *block_fields)
+                               if k in request.form}
         state.forms[job_id]["pedestal"] = "on"
         client = g.pop("quota_client", None)  # the sweep holds its client's share until it ends
 

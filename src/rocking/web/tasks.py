@@ -128,6 +128,56 @@ def _save_plots(response: Any, out: Path, dpi: int) -> None:
     narrow.savefig(out / "energy-narrow.png", dpi=int(1.6 * dpi), metadata={"Software": None})
 
 
+#: The pictures of a run, by their role on the page.
+_RUN_PICTURES = {"response": "response.png", "energy": "energy.png", "animation": "animation.gif",
+                 "response_narrow": "response-narrow.png", "energy_narrow": "energy-narrow.png"}
+
+
+def _save_stack_plots(response: Any, motion: Any, out: Path, dpi: int) -> None:
+    """The stack's ``response.png`` (every block, and the floor) and ``energy.png``, each also
+    narrow for a phone."""
+    from matplotlib.figure import Figure
+
+    from ..viz.stack_plots import plot_stack_energy, plot_stack_response
+
+    plot_stack_response(response, motion=motion).savefig(out / "response.png", dpi=dpi, metadata={"Software": None})
+    plot_stack_energy(response).figure.savefig(out / "energy.png", dpi=dpi, metadata={"Software": None})
+    from ..report.pdf import fit_ylabels
+
+    narrow = Figure(figsize=(NARROW_RESPONSE_SIZE[0], NARROW_RESPONSE_SIZE[1] + 0.4), layout="constrained")
+    plot_stack_response(response, narrow.subplots(3, 1, sharex=True), motion=motion, legend_columns=2)
+    fit_ylabels(narrow)  # the panels of a phone's figure are shorter than their labels
+    narrow.savefig(out / "response-narrow.png", dpi=int(1.6 * dpi), metadata={"Software": None})
+    narrow = Figure(figsize=NARROW_ENERGY_SIZE, layout="constrained")
+    ax = plot_stack_energy(response, narrow.add_subplot())
+    _legend_rows(ax, ncol=1, below=True)
+    fit_ylabels(narrow)
+    narrow.savefig(out / "energy-narrow.png", dpi=int(1.6 * dpi), metadata={"Software": None})
+
+
+def _run_stack(cfg: Any, response: Any, out: Path, anim: Mapping[str, Any], dpi: int, seconds: float,
+               progress: Progress) -> dict[str, Any]:
+    """The pictures and the result of a stack run (:func:`run_task` with ``[[blocks]]``)."""
+    from ..viz.stack_animation import animate_stack
+
+    _, motion, options, _ = cfg.to_specs()
+    progress(1, 4, "plotting")
+    _save_stack_plots(response, motion, out, dpi)
+    progress(2, 4, "animating")
+    speed = _animation_speed(response.end_time, float(anim["longest_video"]))
+    animate_stack(response, out / "animation.gif", speed=speed, fps=float(anim["fps"]), dpi=int(anim["dpi"]))
+    return {
+        "kind": "stack",
+        "verdict": page_words(response.verdict),
+        "summary": _jsonable(response.summary()),
+        "frictions": [None if f.friction is None else f.friction.mu_s for f in response.stack.interfaces],
+        "motion": _motion_rows(motion, response.end_time, options.gravity),
+        "files": dict(_RUN_PICTURES),
+        "animation_speed": speed,
+        "seconds": seconds,
+    }
+
+
 def run_task(
     *,
     config: Mapping[str, Any],
@@ -136,14 +186,18 @@ def run_task(
     dpi: int = 90,
     progress: Progress = _no_progress,
 ) -> dict[str, Any]:
-    """Simulate ``config`` (a config dict, see :mod:`rocking.io.config`) and write
-    ``response.png``, ``energy.png``, ``animation.gif`` and ``result.json`` into ``out_dir``.
+    """Simulate ``config`` (a config dict, see :mod:`rocking.io.config`; a statue, or a stack of
+    blocks with ``blocks`` and ``interfaces``) and write ``response.png``, ``energy.png`` (and
+    their ``-narrow`` versions for a phone), ``animation.gif`` and ``result.json`` into ``out_dir``.
 
     Returns
     -------
     dict
         ``verdict`` (sentence), ``summary`` (JSON-ready :meth:`Response.summary`), ``motion``
         (rows of label, value), ``files`` (picture names), ``animation_speed``, ``seconds``.
+        A stack's also has ``kind = "stack"`` and ``frictions`` (each interface's μs, or None
+        when it never slips); its verdict is :attr:`rocking.stack.StackResponse.verdict`, which
+        names the block that fell or slid to an edge.
     """
     from ..report import verdict
     from ..runner import run_response
@@ -156,6 +210,11 @@ def run_task(
     progress(0, 4, "simulating")
     cfg, response = run_response(dict(config))
     seconds = time.perf_counter() - t0
+    if "blocks" in config:
+        result = _run_stack(cfg, response, out, anim, dpi, seconds, progress)
+        (out / "result.json").write_text(json.dumps(result, indent=2, ensure_ascii=False), encoding="utf-8")
+        progress(4, 4, "done")
+        return result
     summary = response.summary()
     progress(1, 4, "plotting")
     _save_plots(response, out, dpi)
@@ -166,8 +225,7 @@ def run_task(
         "verdict": page_words(verdict(response)),
         "summary": _jsonable(summary),
         "motion": _motion_rows(response.motion, response.end_time, response.options.gravity),
-        "files": {"response": "response.png", "energy": "energy.png", "animation": "animation.gif",
-                  "response_narrow": "response-narrow.png", "energy_narrow": "energy-narrow.png"},
+        "files": dict(_RUN_PICTURES),
         "animation_speed": speed,
         "seconds": seconds,
     }

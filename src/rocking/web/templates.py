@@ -71,6 +71,22 @@ a.download { display: inline-block; margin: 0.3em 0.8em 0.3em 0; }
 tr.best td { font-weight: 600; background: #e7f4ea; }
 .scroll { max-width: 100%; overflow-x: auto; }  /* a wide table scrolls inside its card on a phone */
 #sweep-table td, #sweep-table th { overflow-wrap: normal; white-space: nowrap; }
+/* the stack of blocks: a block per small fieldset, its fields two by two, labels above them */
+.modes label.check { margin: 0.25em 0; }
+fieldset.block { margin: 0.5em 0 0.6em; padding: 0.3em 0.6em 0.5em; }
+fieldset.block legend { display: flex; gap: 0.5em; align-items: baseline; font-weight: 600; }
+fieldset.block legend .on { font-weight: normal; color: #667; font-size: 0.85em; }
+fieldset.block .grid { display: grid; grid-template-columns: repeat(2, minmax(0, 1fr)); gap: 0 0.8em; }
+fieldset.block label { display: block; margin: 0.2em 0; font-size: 0.85em; }
+fieldset.block input[type=text] { display: block; width: 100%; margin-top: 0.1em; }
+fieldset.block .interface { grid-column: 1 / -1; margin: 0.35em 0 0; font-size: 0.8em; color: #556; }
+button.small { font-size: 0.8em; padding: 0.1em 0.6em; }
+[hidden] { display: none !important; }
+#verdict.stack::first-letter { text-transform: uppercase; }
+.data th { vertical-align: bottom; overflow-wrap: normal; }  /* headers wrap, so a phone shows every column */
+.data td { overflow-wrap: normal; }  /* a name breaks at a space or a dash, not inside a word */
+.data td.num { white-space: nowrap; }
+.data td.num, .data th.num { text-align: right; }
 /* a phone: one column, labels above their fields where both do not fit on one line */
 @media (max-width: 640px) {
   body { font-size: 16px; }
@@ -86,6 +102,10 @@ tr.best td { font-weight: 600; background: #e7f4ea; }
   .card { padding: 0.7em 0.7em; }
   .tables { gap: 1em; }
   .tables table { width: 100%; }
+  .tables .scroll table { width: auto; }
+  fieldset.block input[type=text] { width: 100%; }
+  .data { font-size: 0.8em; }
+  .data th, .data td { padding-right: 0.45em; }
   .figures figure, .figures img { width: 100%; }
   td.name { width: 48%; }
 }
@@ -106,7 +126,7 @@ _BASE = (
 <body>
 <header>
   <h1><a href="{{ url_for('index') }}" style="text-decoration:none">rocking</a> — statue on a pedestal under a recorded floor motion</h1>
-  <p>Choose or upload an accelerogram, scale it, describe the statue and its pedestal, and run.
+  <p>Choose or upload an accelerogram, scale it, describe the statue and its pedestal (or a stack of blocks), and run.
      Rigid-block model; SI units. Version {{ version }}.</p>
 </header>
 <main>
@@ -119,6 +139,12 @@ _BASE = (
 
 _FORM = """
 <form id="inputs" method="post" action="{{ url_for('run') }}" enctype="multipart/form-data">
+  <fieldset class="modes">
+    <legend>What stands on the floor</legend>
+    {% for value, text in modes %}
+    <label class="check"><input id="mode-{{ value }}" name="mode" type="radio" value="{{ value }}"{% if value == form.mode or (form.mode not in ['statue', 'stack'] and value == 'statue') %} checked{% endif %}> {{ text }}</label>
+    {% endfor %}
+  </fieldset>
   <fieldset>
     <legend>Floor motion</legend>
     <label>bundled record
@@ -156,7 +182,7 @@ _FORM = """
     <p class="hint" id="pga-preview" aria-live="polite"></p>
     <label>duration (s) <input id="duration" name="duration" type="text" inputmode="decimal" value="{{ form.duration }}" placeholder="the record's length" title="at most {{ max_duration }} s on this server"></label>
   </fieldset>
-  <fieldset>
+  <fieldset id="statue-fields"{% if form.mode == 'stack' %} hidden{% endif %}>
     <legend>Statue</legend>
     <label>width B (m) <input id="statue_width" name="statue_width" type="text" inputmode="decimal" value="{{ form.statue_width }}"></label>
     <label>height H (m) <input id="statue_height" name="statue_height" type="text" inputmode="decimal" value="{{ form.statue_height }}"></label>
@@ -166,7 +192,7 @@ _FORM = """
     <label>friction μk <input id="statue_mu_k" name="statue_mu_k" type="text" inputmode="decimal" value="{{ form.statue_mu_k }}" placeholder="= μs"></label>
     <p class="hint">Friction under the statue: on the floor without a pedestal, on the pedestal's top (checked only) with one.</p>
   </fieldset>
-  <fieldset id="pedestal-fields">
+  <fieldset id="pedestal-fields"{% if form.mode == 'stack' %} hidden{% endif %}>
     <legend>Pedestal</legend>
     <label class="check"><input id="pedestal" name="pedestal" type="checkbox" value="on"{% if form.pedestal %} checked{% endif %}> the statue stands on a pedestal that can slide</label>
     <label>mass (kg) <input id="pedestal_mass" name="pedestal_mass" type="text" inputmode="decimal" value="{{ form.pedestal_mass }}"></label>
@@ -175,9 +201,36 @@ _FORM = """
     <label>width (m) <input id="pedestal_width" name="pedestal_width" type="text" inputmode="decimal" value="{{ form.pedestal_width }}" placeholder="optional"></label>
     <label>height (m) <input id="pedestal_height" name="pedestal_height" type="text" inputmode="decimal" value="{{ form.pedestal_height }}" placeholder="optional"></label>
   </fieldset>
+  <fieldset id="stack-fields"{% if form.mode != 'stack' %} hidden{% endif %}>
+    <legend>Stack of blocks, from the floor up</legend>
+    <input id="stack_blocks" name="stack_blocks" type="hidden" value="{{ shown_blocks }}">
+    <p class="hint">Block 1 stands on the floor, each next block on the one below; every contact may stick, slip,
+      rock and lift off. Offset: the block's centre to the right of the centre of the block below (m). μs left
+      empty: that contact never slips; r left empty: Housner's rule.</p>
+    {% for k in range(1, max_blocks + 1) %}
+    {% set p = "block" ~ k %}
+    <fieldset class="block" id="{{ p }}"{% if k > shown_blocks %} hidden{% endif %}>
+      <legend>Block {{ k }} <span class="on">on {{ "the floor" if k == 1 else "block " ~ (k - 1) }}</span>
+        <button type="button" class="secondary small remove" data-block="{{ k }}" title="remove block {{ k }}">remove</button></legend>
+      <div class="grid">
+        <label>name <input id="{{ p }}_name" name="{{ p }}_name" type="text" value="{{ form[p ~ '_name'] }}" placeholder="block {{ k }}" maxlength="40"></label>
+        <label>offset (m) <input id="{{ p }}_offset" name="{{ p }}_offset" type="text" inputmode="decimal" value="{{ form[p ~ '_offset'] }}" placeholder="0, centred"></label>
+        <label>width B (m) <input id="{{ p }}_width" name="{{ p }}_width" type="text" inputmode="decimal" value="{{ form[p ~ '_width'] }}"></label>
+        <label>height H (m) <input id="{{ p }}_height" name="{{ p }}_height" type="text" inputmode="decimal" value="{{ form[p ~ '_height'] }}"></label>
+        <label>mass (kg) <input id="{{ p }}_mass" name="{{ p }}_mass" type="text" inputmode="decimal" value="{{ form[p ~ '_mass'] }}"></label>
+        <p class="interface">The contact under it, on {{ "the floor" if k == 1 else "block " ~ (k - 1) }}:</p>
+        <label>friction μs <input id="{{ p }}_mu_s" name="{{ p }}_mu_s" type="text" inputmode="decimal" value="{{ form[p ~ '_mu_s'] }}" placeholder="never slips"></label>
+        <label>friction μk <input id="{{ p }}_mu_k" name="{{ p }}_mu_k" type="text" inputmode="decimal" value="{{ form[p ~ '_mu_k'] }}" placeholder="= μs"></label>
+        <label>restitution r <input id="{{ p }}_restitution" name="{{ p }}_restitution" type="text" inputmode="decimal" value="{{ form[p ~ '_restitution'] }}" placeholder="Housner's rule"></label>
+      </div>
+    </fieldset>
+    {% endfor %}
+    <div class="buttons"><button id="add-block" class="secondary" type="button">Add a block on top</button>
+      <span id="block-count" class="muted" data-max="{{ max_blocks }}">{{ shown_blocks }} of at most {{ max_blocks }} blocks</span></div>
+  </fieldset>
   <div class="buttons" id="run-bar"><button id="run" type="submit">Run</button>
     <span id="busy" class="busy" role="status" hidden data-limit="{{ timeout }}">Running… (at most {{ timeout }} s)</span></div>
-  <fieldset style="margin-top:1em">
+  <fieldset id="sweep-fields" style="margin-top:1em"{% if form.mode == 'stack' %} hidden{% endif %}>
     <legend>Friction design sweep</legend>
     <p class="hint">Runs the statue on its pedestal for several floor frictions μs of the pedestal
       (μk/μs as entered above) and writes a report for the best value.</p>
@@ -202,6 +255,51 @@ _FORM = """
   }
   box.addEventListener("change", sync);
   sync();
+
+  // statue or stack: only the fields of the chosen mode show (the others keep their values)
+  var modes = document.querySelectorAll("input[name=mode]");
+  function showMode() {
+    var stack = document.getElementById("mode-stack").checked;
+    ["statue-fields", "pedestal-fields", "sweep-fields"].forEach(function (id) {
+      document.getElementById(id).hidden = stack;
+    });
+    document.getElementById("stack-fields").hidden = !stack;
+  }
+  modes.forEach(function (el) { el.addEventListener("change", showMode); });
+  showMode();
+
+  // the blocks: add one on top, or remove any (those above move down one place)
+  var count = document.getElementById("stack_blocks");
+  var countText = document.getElementById("block-count");
+  var MAX_BLOCKS = Number(countText.getAttribute("data-max"));
+  var FIELDS = ["name", "offset", "width", "height", "mass", "mu_s", "mu_k", "restitution"];
+  function field(k, f) { return document.getElementById("block" + k + "_" + f); }
+  function showBlocks() {
+    var n = Number(count.value);
+    for (var k = 1; k <= MAX_BLOCKS; k++) { document.getElementById("block" + k).hidden = k > n; }
+    document.querySelectorAll("#stack-fields button.remove").forEach(function (b) { b.disabled = n <= 1; });
+    document.getElementById("add-block").disabled = n >= MAX_BLOCKS;
+    countText.textContent = n + " of at most " + MAX_BLOCKS + " blocks";
+  }
+  document.getElementById("add-block").addEventListener("click", function () {
+    var n = Math.min(Number(count.value) + 1, MAX_BLOCKS);
+    count.value = n;
+    showBlocks();
+    field(n, "width").focus();
+  });
+  document.querySelectorAll("#stack-fields button.remove").forEach(function (b) {
+    b.addEventListener("click", function () {
+      var n = Number(count.value), k = Number(b.getAttribute("data-block"));
+      if (n <= 1) { return; }
+      for (var j = k; j < n; j++) {
+        FIELDS.forEach(function (f) { field(j, f).value = field(j + 1, f).value; });
+      }
+      FIELDS.forEach(function (f) { field(n, f).value = ""; });
+      count.value = n - 1;
+      showBlocks();
+    });
+  });
+  showBlocks();
 
   // the PGA the scale gives, before running (the same arithmetic as the server: g = 9.80665 m/s²)
   var G = 9.80665;
@@ -245,6 +343,7 @@ _FORM = """
   var timer = null;
   function busy(on, which) {
     document.querySelectorAll("#inputs button").forEach(function (b) { b.disabled = on; });
+    if (!on) { showBlocks(); }
     var el = document.getElementById(which);
     if (timer) { clearInterval(timer); timer = null; }
     document.querySelectorAll("#inputs .busy").forEach(function (b) { b.hidden = true; });
@@ -325,6 +424,9 @@ _INDEX = (
     <em>Run</em> simulates the chosen record and shows whether the statue overturns, how far it rocks and slides, an
     animation and the response plots. <em>Run design sweep</em> tries a range of floor frictions for the pedestal
     and writes a report (HTML, PDF and CSV) you can download.</p>
+    <p>Or choose <em>a stack of blocks</em>: up to {{ max_blocks }} blocks from the floor up (a plinth, a statue, a
+    vase…), each free to rock, slide and lift off on the one below, with its own friction and restitution. <em>Run</em>
+    then names the block that falls, gives a row per block and per contact, and draws every block.</p>
     <p class="muted">The bundled records are real accelerograms (PEER NGA and ESM); see <code>rocking records</code>.</p>
   </div>
 {% endif %}
@@ -333,7 +435,76 @@ _INDEX = (
 """
 )
 
-_RESULT = """
+_STACK_RESULT = """
+<div class="card" id="result">
+  <p id="verdict" class="verdict stack {{ result.verdict_class }}">{{ result.verdict }}</p>
+  <div class="tables">
+    <table id="summary">
+      <tr><th colspan="2">Summary</th></tr>
+      {% for key, label, text, value in result.rows %}
+      <tr><td class="name">{{ label }}</td><td id="{{ key }}" data-value="{{ value }}">{{ text }}</td></tr>
+      {% endfor %}
+    </table>
+    <table id="motion">
+      <tr><th colspan="2">Motion</th></tr>
+      {% for label, text in result.motion %}
+      <tr><td class="name">{{ label }}</td><td>{{ text }}</td></tr>
+      {% endfor %}
+      <tr><td class="name">computing time</td><td>{{ "%.2f"|format(result.seconds) }} s</td></tr>
+      <tr><td class="name">permalink</td><td><a id="permalink" href="{{ url_for('show_run', run_id=result.id) }}">run {{ result.id[:8] }}</a>
+        · <a href="{{ url_for('run_file', run_id=result.id, name='result.json') }}">result.json</a></td></tr>
+    </table>
+  </div>
+  <h2 style="margin-top:0.9em">Blocks, from the floor up</h2>
+  <div class="scroll"><table id="blocks" class="data">
+    <tr><th>block</th><th>overturned</th><th class="num">peak rotation (°)</th><th class="num">peak sliding (mm)</th><th class="num">residual sliding (mm)</th></tr>
+    {% for b in result.block_rows %}
+    <tr data-values="{{ b["values"] }}"><td>{{ b.name }}</td><td>{{ b.overturned }}</td><td class="num">{{ b.peak_rotation }}</td><td class="num">{{ b.peak_sliding }}</td><td class="num">{{ b.residual_sliding }}</td></tr>
+    {% endfor %}
+  </table></div>
+  <p class="muted">Rotation and sliding of each block on what it stands on (the block below, or the floor).</p>
+  <h2>Interfaces, from the floor up</h2>
+  <div class="scroll"><table id="interfaces" class="data">
+    <tr><th>interface</th><th class="num">friction needed</th><th class="num">μs given</th><th class="num">slip path (mm)</th><th class="num">impacts</th></tr>
+    {% for f in result.interface_rows %}
+    <tr data-values="{{ f["values"] }}"><td>{{ f.name }}</td><td class="num">{{ f.required_friction }}</td><td class="num">{{ f.given }}</td><td class="num">{{ f.slip_path }}</td><td class="num">{{ f.impacts }}</td></tr>
+    {% endfor %}
+  </table></div>
+  <p class="muted">Friction needed: the largest ratio of tangential to normal force while the contact stuck; a contact
+    with μs slips when it needs more, and that slip is simulated.</p>
+</div>
+<div class="card">
+  <h2>Animation and plots</h2>
+  <div class="figures">
+    <figure>
+      <img id="animation" alt="animation of the stack of blocks" src="{{ url_for('run_file', run_id=result.id, name=result.files.animation) }}">
+      <figcaption>{% if result.animation_speed > 1.001 %}Played at {{ "%g"|format(result.animation_speed|round(2)) }}× real
+        time (the run is longer than a minute){% else %}Played in real time{% endif %}; every block drawn to scale where
+        the model puts it, the floor still (the picture moves with it). The header gives each block's rotation on what
+        it stands on.</figcaption>
+    </figure>
+    {% for key, element, alt, caption in [
+        ("response", "response-plot", "rotation and sliding of every block and the floor acceleration against time",
+         "Rotation φ of each block on what it stands on (°), its sliding along that face (mm) and the floor acceleration "
+         ~ "against time; one colour per block; a dashed line where a block overturns."),
+        ("energy", "energy-plot", "mechanical energy of the stack against time",
+         "Change of the stack's mechanical energy E − E₀ since the start (zero: the stack as it started, at rest), with "
+         ~ "the ledger W − D (the floor's work less friction and impact losses) dashed over it: the two coincide when "
+         ~ "the energy balance closes.")] %}
+    <figure>
+      <a href="{{ url_for('run_file', run_id=result.id, name=result.files[key]) }}" title="full size">
+      <picture>
+        <source media="(max-width: 640px)" srcset="{{ url_for('run_file', run_id=result.id, name=result.files[key ~ '_narrow']) }}">
+        <img id="{{ element }}" alt="{{ alt }}" src="{{ url_for('run_file', run_id=result.id, name=result.files[key]) }}">
+      </picture></a>
+      <figcaption>{{ caption }}</figcaption>
+    </figure>
+    {% endfor %}
+  </div>
+</div>
+"""
+
+_RESULT = """{% if result.kind == "stack" %}{% include "stack_result.html" %}{% else %}
 <div class="card" id="result">
   <p id="verdict" class="verdict {{ result.verdict_class }}">{{ result.verdict }}</p>
   <div class="tables">
@@ -385,6 +556,7 @@ _RESULT = """
     {% endfor %}
   </div>
 </div>
+{% endif %}
 """
 
 _RUN_PAGE = """{% extends "base.html" %}
@@ -476,6 +648,7 @@ TEMPLATES = {
     "base.html": _BASE,
     "index.html": _INDEX,
     "result.html": _RESULT,
+    "stack_result.html": _STACK_RESULT,
     "run.html": _RUN_PAGE,
     "sweep.html": _SWEEP,
 }
