@@ -461,7 +461,7 @@ def _stack_verdict_by_the_api() -> str:
     stack = Stack(
         blocks=(Block(name="pedestal", width=0.8, height=0.5, mass=300.0), Block(name="statue", width=0.3, height=1.2,
                                                                                  mass=100.0),
-                Block(name="vase", width=0.2, height=0.45, mass=8.0, offset=0.05)),
+                Block(name="vase", width=0.2, height=0.45, mass=8.0)),
         interfaces=(Interface(friction=rk.Friction(static=0.3, kinetic=0.25)),
                     Interface(friction=rk.Friction(static=0.5, kinetic=0.4)),
                     Interface(friction=rk.Friction(static=0.4, kinetic=0.32), restitution=0.7)))
