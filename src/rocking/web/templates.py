@@ -435,9 +435,8 @@ _INDEX = (
 """
 )
 
-_STACK_RESULT = """
-<div class="card" id="result">
-  <p id="verdict" class="verdict stack {{ result.verdict_class }}">{{ result.verdict }}</p>
+# The summary and motion tables of a result, statue or stack.
+_SUMMARY_TABLES = """
   <div class="tables">
     <table id="summary">
       <tr><th colspan="2">Summary</th></tr>
@@ -455,6 +454,12 @@ _STACK_RESULT = """
         · <a href="{{ url_for('run_file', run_id=result.id, name='result.json') }}">result.json</a></td></tr>
     </table>
   </div>
+"""
+
+_STACK_RESULT = """
+<div class="card" id="result">
+  <p id="verdict" class="verdict stack {{ result.verdict_class }}">{{ result.verdict }}</p>
+  {% include "summary_tables.html" %}
   <h2 style="margin-top:0.9em">Blocks, from the floor up</h2>
   <div class="scroll"><table id="blocks" class="data">
     <tr><th>block</th><th>overturned</th><th class="num">peak rotation (°)</th><th class="num">peak sliding (mm)</th><th class="num">residual sliding (mm)</th></tr>
@@ -507,23 +512,7 @@ _STACK_RESULT = """
 _RESULT = """{% if result.kind == "stack" %}{% include "stack_result.html" %}{% else %}
 <div class="card" id="result">
   <p id="verdict" class="verdict {{ result.verdict_class }}">{{ result.verdict }}</p>
-  <div class="tables">
-    <table id="summary">
-      <tr><th colspan="2">Summary</th></tr>
-      {% for key, label, text, value in result.rows %}
-      <tr><td class="name">{{ label }}</td><td id="{{ key }}" data-value="{{ value }}">{{ text }}</td></tr>
-      {% endfor %}
-    </table>
-    <table id="motion">
-      <tr><th colspan="2">Motion</th></tr>
-      {% for label, text in result.motion %}
-      <tr><td class="name">{{ label }}</td><td>{{ text }}</td></tr>
-      {% endfor %}
-      <tr><td class="name">computing time</td><td>{{ "%.2f"|format(result.seconds) }} s</td></tr>
-      <tr><td class="name">permalink</td><td><a id="permalink" href="{{ url_for('show_run', run_id=result.id) }}">run {{ result.id[:8] }}</a>
-        · <a href="{{ url_for('run_file', run_id=result.id, name='result.json') }}">result.json</a></td></tr>
-    </table>
-  </div>
+  {% include "summary_tables.html" %}
   {% if result.summary.warnings %}
   <ul class="warnings" id="warnings">{% for w in result.summary.warnings %}<li>{{ w }}</li>{% endfor %}</ul>
   {% endif %}
@@ -649,6 +638,7 @@ TEMPLATES = {
     "index.html": _INDEX,
     "result.html": _RESULT,
     "stack_result.html": _STACK_RESULT,
+    "summary_tables.html": _SUMMARY_TABLES,
     "run.html": _RUN_PAGE,
     "sweep.html": _SWEEP,
 }
