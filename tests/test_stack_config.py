@@ -307,3 +307,20 @@ def test_the_verdict_of_a_stack_whose_middle_block_fell_is_red():
     summary["blocks"][1]["overturned"] = False
     summary["verdict"] = "did not overturn; at rest at t = 9.000 s"
     assert outcome_markup(summary).startswith("[bold green]")
+
+
+def test_a_block_that_did_not_fall_before_the_run_stopped_is_not_said_to_stand():
+    """The run stops at the first fall: the vase on a statue that fell was not seen to stay up,
+    so its row says so instead of "no"; with no fall and no stop, "no"."""
+    from rocking.io.stack_output import fall_text
+
+    blocks = [{"name": "plinth", "overturned": False, "overturn_time": None},
+              {"name": "statue", "overturned": True, "overturn_time": 2.125},
+              {"name": "vase", "overturned": False, "overturn_time": None}]
+    summary = {"status": "overturned", "blocks": blocks}
+    assert [fall_text(summary, k) for k in range(3)] == [
+        "not known (run stopped at statue's fall)", "at 2.125 s", "not known (run stopped at statue's fall)"]
+    edge = {"status": "slid_past_edge", "blocks": [dict(b, overturned=False, overturn_time=None) for b in blocks]}
+    assert fall_text(edge, 2) == "not known (run stopped at a slide to an edge)"
+    calm = {"status": "completed", "blocks": edge["blocks"]}
+    assert [fall_text(calm, k) for k in range(3)] == ["no", "no", "no"]

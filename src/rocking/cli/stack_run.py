@@ -21,7 +21,7 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..io.output import summary_json
-from ..io.stack_output import STACK_OUTPUT_FILES, check_stack_output_space, write_stack_outputs
+from ..io.stack_output import STACK_OUTPUT_FILES, check_stack_output_space, fall_text, write_stack_outputs
 from .render import _num, _time, outcome_markup
 
 __all__ = ["show_stack_run", "stack_tables"]
@@ -63,8 +63,8 @@ def stack_tables(summary: Mapping[str, Any], *, frictions: list[float | None] | 
                    title_justify="left", box=box.SIMPLE_HEAD)
     for name in ("block", "overturned", "peak rotation (°)", "peak sliding (mm)", "residual sliding (mm)"):
         blocks.add_column(name, justify="left" if name in ("block", "overturned") else "right")
-    for b in s["blocks"]:
-        fell = f"[red]at {b['overturn_time']:.3f} s[/]" if b["overturned"] else "no"
+    for k, b in enumerate(s["blocks"]):
+        fell = f"[red]{fall_text(s, k)}[/]" if b["overturned"] else escape(fall_text(s, k))
         blocks.add_row(escape(b["name"]), fell, _degrees(b["peak_rotation"]), _mm(b["peak_sliding"]),
                        _mm(b["residual_sliding"]))
 

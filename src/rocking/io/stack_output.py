@@ -39,6 +39,22 @@ _FIXED_BYTES = 1_000_000
 _CSV_BLOCK_ROWS = 50_000
 
 
+def fall_text(summary: dict, k: int) -> str:
+    """Whether block k of a stack's summary fell, in words: "at 2.125 s", "no", or, when the run
+    stopped at another block's fall (or slide to an edge) first, that its fate is not known: a
+    vase on a statue that falls has not been seen to stay up."""
+    block = summary["blocks"][k]
+    if block["overturned"]:
+        return f"at {block['overturn_time']:.3f} s"
+    fallen = [b for b in summary["blocks"] if b["overturned"]]
+    if fallen:
+        first = min(fallen, key=lambda b: b["overturn_time"])
+        return f"not known (run stopped at {first['name']}'s fall)"
+    if summary.get("status") == "slid_past_edge":
+        return "not known (run stopped at a slide to an edge)"
+    return "no"
+
+
 def _labels(names: tuple[str, ...]) -> list[str]:
     slugs = [re.sub(r"[^A-Za-z0-9_-]", "_", name) for name in names]
     if len(set(slugs)) < len(slugs):

@@ -30,6 +30,7 @@ from .. import __version__
 from ..constants import STANDARD_GRAVITY
 from ..io.config import ConfigError, load_config
 from ..io.records import RecordError, UnitsConflictError, bundled_records, read_record
+from ..io.stack_output import fall_text
 from . import tasks
 from .jobs import DONE, JobRunner
 from .templates import TEMPLATES
@@ -643,10 +644,10 @@ def block_rows(s: Mapping[str, Any]) -> list[dict[str, Any]]:
     """One row per block, from the floor up: name, whether and when it overturned, peak rotation
     on what is below (°), peak and residual sliding on it (mm); ``values`` holds the SI numbers."""
     rows = []
-    for b in s["blocks"]:
+    for k, b in enumerate(s["blocks"]):
         rows.append({
             "name": b["name"],
-            "overturned": f"at {b['overturn_time']:.3f} s" if b["overturned"] else "no",
+            "overturned": fall_text(s, k),
             "peak_rotation": _degrees(b["peak_rotation"]),
             "peak_sliding": _mm(b["peak_sliding"]),
             "residual_sliding": _mm(b["residual_sliding"]),
