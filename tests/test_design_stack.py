@@ -142,7 +142,7 @@ def test_only_the_top_face_saves_the_statue_and_the_report_names_it(top_face_des
                   interfaces=(Interface(friction=rk.Friction(static=0.6 * 1.2, kinetic=0.5 * 1.2)),
                               Interface(friction=rk.Friction(static=0.15 * 1.2, kinetic=0.12 * 1.2))))
     single = simulate_stack(stack, motions[name], options=rk.Options(gravity=G, free_time_limit=5.0)).summary()
-    run = ds.sel(mu_s=0.6, mu_s_top=0.15, motion=name, friction_factor=1.2).squeeze()
+    run = ds.sel(mu_s=0.6, mu_s_top=0.15, motion=name, friction_level="both faces μs·1.2").squeeze()
     assert float(run.scatter_top_sliding) == single["blocks"][1]["peak_sliding"]
     assert float(run.scatter_floor_sliding) == single["blocks"][0]["peak_sliding"]
     assert float(run.scatter_required_top_friction) == single["interfaces"][1]["required_friction"]
@@ -162,7 +162,139 @@ def test_sliding_to_the_pedestal_edge_is_not_safe_and_is_named():
     assert math.isnan(ds.attrs["recommended_mu_s"])
     text = ds.attrs["verdict_lines"]
     assert "the statue slides to the edge of the pedestal (a fall risk) under 1 of 2 motions: " + slow in text
-    assert "slides to the edge of the pedestal at μs·0.8, μs, μs·1.2 (a fall risk)" in design_report(ds)
+    assert "slides to the edge of the pedestal at every friction level (a fall risk)" in design_report(ds)
+
+
+# ------------------------------------------------- the two faces' friction drifting apart
+LEVELS = {"nominal μs": (1.0, 1.0), "both faces μs·0.8": (0.8, 0.8), "both faces μs·1.2": (1.2, 1.2),
+          "floor μs·1.2 with top μs·0.8": (1.2, 0.8), "floor μs·0.8 with top μs·1.2": (0.8, 1.2)}
+
+
+def _stored_runs(monkeypatch):
+    """The runs a design hands to the store, as they are stored."""
+    from rocking.analyses import design
+
+    seen = []
+
+    def keep(runs, *args, **kw):
+        seen.extend(runs)
+        return run_stored(runs, *args, **kw)
+
+    monkeypatch.setattr(design, "run_stored", keep)
+    return seen
+
+
+def _faces(run):
+    floor, top = (face.friction for face in run.system.interfaces)
+    return floor, top
+
+
+def test_both_faces_run_together_and_in_opposite_directions(monkeypatch):
+    runs = _stored_runs(monkeypatch)
+    ds = friction_design(SYSTEM, {"m": MOTION}, mu_s=[0.3], mu_k_ratio=0.8, mu_s_top=[0.2], mu_k_top_ratio=0.5,
+                         free_time=2.0, options=OPTS, workers=1)
+    assert ds.friction_level.values.tolist() == list(LEVELS)
+    assert list(zip(ds.floor_factor.values.tolist(), ds.top_factor.values.tolist())) == list(LEVELS.values())
+    assert len(runs) == 5
+    for run, (f_floor, f_top) in zip(runs, LEVELS.values()):
+        floor, top = _faces(run)
+        assert (floor.static, floor.kinetic) == (0.3 * f_floor, 0.8 * 0.3 * f_floor)
+        assert (top.static, top.kinetic) == (0.2 * f_top, 0.5 * 0.2 * f_top)
+    report = design_report(ds)
+    assert ("every candidate also runs with both faces at μs·(1 ± s) together and in opposite directions (μk "
+            "alike): both faces μs·0.8, both faces μs·1.2, floor μs·1.2 with top μs·0.8, floor μs·0.8 with "
+            "top μs·1.2; every result below is the worst of the five levels.") in report
+    assert ("under every motion with both faces at μs and at μs·(1 ± 0.2) together and in opposite directions"
+            in report)
+    # without scatter, the nominal friction only
+    runs.clear()
+    exact = friction_design(SYSTEM, {"m": MOTION}, mu_s=[0.3], mu_s_top=[0.2], friction_scatter=0.0, free_time=2.0,
+                            options=OPTS, workers=1)
+    assert len(runs) == 1 and exact.friction_level.values.tolist() == ["nominal μs"]
+
+
+def test_a_top_face_that_never_slips_runs_three_levels(monkeypatch):
+    runs = _stored_runs(monkeypatch)
+    ds = friction_design(_stack(None), {"m": MOTION}, mu_s=[0.3], mu_k_ratio=0.8, free_time=2.0, options=OPTS,
+                         workers=1)
+    assert ds.attrs["engine"] == "stack" and math.isinf(ds.mu_s_top.item())
+    assert len(runs) == 3 and ds.sizes["friction_level"] == 3
+    assert [_faces(run)[0].static for run in runs] == [0.3, 0.3 * 0.8, 0.3 * 1.2]
+    assert all(_faces(run)[1] is None for run in runs)
+    assert ds.friction_level.values.tolist() == ["nominal μs", "floor μs·0.8", "floor μs·1.2"]
+    report = design_report(ds)
+    assert "the top face never slips, so every candidate also runs with the floor face's μs and μk" in report
+    assert "with the floor face at μs and μs·(1 ± 0.2) (μk alike; the top face never slips)" in report
+
+
+@pytest.fixture(scope="module")
+def drifting_apart():
+    """A statue on a 1.2 m pedestal (default top-face limit 200 mm) whose top face (μs = 0.2) is
+    slipperier than its floor face (μs = 0.2 or 0.3), under one harmonic motion."""
+    stack = _stack(0.2, width=1.2)
+    motions = motion_family("harmonic", [4.0], [1.2], cycles=3)
+    return friction_design(stack, motions, mu_s=[0.2, 0.3], free_time=5.0, options=OPTS, workers=1)
+
+
+def test_only_the_faces_drifting_apart_exceed_the_top_limit_and_move_the_recommendation(drifting_apart):
+    from rocking.analyses.design import choose_design
+
+    ds = drifting_apart
+    room = float(ds.top_sliding_limit.item())
+    assert room == pytest.approx(0.2)
+    gripping = ds.sel(mu_s=0.3).squeeze()
+    top = gripping.scatter_top_sliding.sel(friction_level=list(LEVELS))
+    together, apart = top.values[:3], top.sel(friction_level="floor μs·1.2 with top μs·0.8").item()
+    # the floor face gripping harder under a slipperier top face: only that drift exceeds the room
+    assert together.max() < room < apart and float(gripping.top_sliding_max) == apart
+    # the reverse drift is the floor face's worst: it sets the free space
+    floor = gripping.scatter_floor_sliding
+    reverse = floor.sel(friction_level="floor μs·0.8 with top μs·1.2").item()
+    assert floor.values[:3].max() < reverse == float(gripping.peak_sliding_max)
+
+    def recommended(levels):
+        """choose_design over these levels only (the worst of them per candidate)."""
+        part = ds.isel(friction_level=levels)
+        worst = lambda name: part[name].max("friction_level").values  # noqa: E731
+        choice = choose_design(
+            mu_s=ds.mu_s.values, mu_k=ds.mu_k.values, pedestal_mass=ds.pedestal_mass.values,
+            motions=ds.motion.values, falls=part.scatter_overturned.any("friction_level").values,
+            undetermined=part.scatter_undetermined.any("friction_level").values,
+            clearance=worst("scatter_floor_sliding"), residual=ds.residual_sliding_max.values,
+            top_friction=ds.required_top_friction_max.values, score=ds.score.values,
+            extra_axes=(("mu_s_top", ds.mu_s_top.values), ("pedestal_width", ds.pedestal_width.values)),
+            top_sliding=worst("scatter_top_sliding").max(-1), top_sliding_limit=room)
+        return float(ds.mu_s.values[choice.recommended[0]])
+
+    # the faces drifting together only would have recommended the gripping floor face; apart, it fails
+    assert recommended([0, 1, 2]) == 0.3 and recommended([0, 1, 2, 3, 4]) == 0.2
+    assert ds.attrs["recommended_mu_s"] == 0.2 and ds.attrs["excluded_by_top_sliding_mu_s"] == 0.3
+    assert not bool(ds.feasible.sel(mu_s=0.3).item()) and bool(ds.feasible.sel(mu_s=0.2).item())
+    assert (f"excludes floor μs = 0.3 (μk = 0.24), top μs = 0.2 (μk = 0.16), pedestal mass 300 kg, width 1.2 m, "
+            f"which would otherwise be recommended: the statue slides {_mm_text(1e3 * apart)} on the pedestal's top "
+            "face, more than the 200 mm limit there.") in ds.attrs["verdict_lines"]
+
+
+def test_a_folder_of_a_design_run_before_the_levels_apart_is_refused_not_mixed(drifting_apart, tmp_path):
+    """The levels of earlier versions (both faces ·0.8, ·1, ·1.2 together only) are other runs: the
+    store's fingerprint differs, so a rerun into that folder refuses, and --fresh recomputes."""
+    import dataclasses
+
+    from rocking.analyses.store import StoreMismatchError
+
+    motions = motion_family("harmonic", [4.0], [1.2], cycles=3)
+    old = [Run(_stack(0.2 * f, floor_mu=mu * f, width=1.2), name) for name in motions for mu in (0.2, 0.3)
+           for f in (0.8, 1.0, 1.2)]
+    folder = tmp_path / "chunks"
+    # one chunk each: only the runs tell the two studies apart
+    run_stored(old, motions, options=dataclasses.replace(OPTS, free_time_limit=5.0), study="design", folder=folder,
+               workers=1, chunk_size=100, meta={"friction_factor": [0.8, 1.0, 1.2]})
+    kw = dict(mu_s=[0.2, 0.3], free_time=5.0, options=OPTS, workers=1, folder=folder, chunk_size=100)
+    with pytest.raises(StoreMismatchError, match="holds the chunks of another design"):
+        friction_design(_stack(0.2, width=1.2), motions, **kw)
+    again = friction_design(_stack(0.2, width=1.2), motions, fresh=True, **kw)
+    assert again.sizes["friction_level"] == 5
+    np.testing.assert_array_equal(again.scatter_top_sliding.values, drifting_apart.scatter_top_sliding.values)
 
 
 def _panels(fig):
@@ -240,7 +372,7 @@ def top_limit_designs():
     return {limit: friction_design(SYSTEM, motions, mu_s=[0.15, 0.6], mu_s_top=[0.15], mu_k_top_ratio=0.8,
                                    pedestal_width=[1.2, 2.0], free_time=5.0, options=OPTS, workers=1,
                                    top_sliding_limit=limit)
-            for limit in (None, 0.1, math.inf)}
+            for limit in (None, 0.1, 0.2, math.inf)}
 
 
 def _recommended(ds):
@@ -249,7 +381,7 @@ def _recommended(ds):
 
 
 def test_the_top_limit_moves_the_recommendation_and_the_verdict_says_why(top_limit_designs):
-    loose, default, tight = (top_limit_designs[k] for k in (math.inf, None, 0.1))
+    loose, default, tight, tighter = (top_limit_designs[k] for k in (math.inf, None, 0.2, 0.1))
     slide = float(loose.top_sliding_max.sel(mu_s=0.6, pedestal_width=1.2).item())
     assert 0.2 < slide < 0.4  # over the default 200 mm on the 1.2 m pedestal, within the 400 mm on the 2 m one
     # no limit: the gripping floor face on the narrower pedestal, as before the limit existed
@@ -263,10 +395,17 @@ def test_the_top_limit_moves_the_recommendation_and_the_verdict_says_why(top_lim
                         f"otherwise be recommended: the statue slides {_mm_text(1e3 * slide)} on the pedestal's "
                         "top face, more than the 200 mm limit there.")
     assert default.attrs["excluded_by_top_sliding_pedestal_width"] == 1.2
-    # 100 mm: neither pedestal takes the top face's slide; the slippery floor face isolates instead
+    # 200 mm on both: neither pedestal takes the top face's slide; the slippery floor face isolates instead
     assert _recommended(tight) == (0.15, 2.0) and tight.attrs["excluded_by_top_sliding_mu_s"] == 0.6
-    assert float(tight.top_sliding_max.sel(mu_s=0.15, pedestal_width=2.0).item()) <= 0.1
-    assert "statue's slide on the top face ≤ 100 mm" in tight.attrs["verdict"]
+    assert float(tight.top_sliding_max.sel(mu_s=0.15, pedestal_width=2.0).item()) <= 0.2
+    assert "statue's slide on the top face ≤ 200 mm" in tight.attrs["verdict"]
+    # 100 mm: the slippery floor face keeps the statue within it while the faces drift together,
+    # not when the floor grips harder under a slipperier top: then no candidate meets the limit
+    slippery = tighter.scatter_top_sliding.sel(mu_s=0.15, pedestal_width=2.0).squeeze()
+    apart = slippery.sel(friction_level="floor μs·1.2 with top μs·0.8").max().item()
+    assert slippery.isel(friction_level=[0, 1, 2]).max().item() <= 0.1 < apart
+    assert not tighter.feasible.any() and not tighter.attrs["meets_every_requirement"]
+    assert "statue's slide on the top face ≤ 100 mm" in tighter.attrs["verdict"]
 
 
 def test_the_report_shows_the_top_slide_against_its_limit(top_limit_designs):

@@ -5,8 +5,9 @@ Every candidate (μs of the pedestal's floor face, with μk given or as a ratio 
 optionally the pedestal mass) is run under every motion of a set (records scaled to a target
 intensity, or a harmonic/pulse family), at its nominal friction and, because measured friction
 scatters with the surfaces, humidity and age, at μs·(1 − s) and μs·(1 + s) with μk scaled alike
-(``friction_scatter`` s, default 0.2). For each candidate the study reports, over the motions and
-those three friction levels (the worst of them):
+(``friction_scatter`` s, default 0.2; designing both faces, :func:`two_face_design` also runs the
+faces drifting in opposite directions: five levels). For each candidate the study reports, over
+the motions and those friction levels (the worst of them):
 
 * the statue's peak θ/α (mean, median and maximum over the motions; an overturn counts as π/(2α));
 * the motions under which the statue falls, and those whose runs prove nothing (still moving at
@@ -18,7 +19,7 @@ those three friction levels (the worst of them):
 
 The ranking (:func:`choose_design`; the rules are in ``docs/studies.md``) puts safety above every
 limit: a candidate is *safe* if the statue neither falls nor is left undetermined under any motion
-at any of the three friction levels. The recommendation is the best safe candidate that meets
+at any of the friction levels. The recommendation is the best safe candidate that meets
 the limits (peak sliding ≤ ``sliding_limit``, residual sliding ≤ ``residual_limit``, required top
 friction ≤ ``top_friction_limit``). If there is none, the verdict's first line says so, and the
 two nearest ways out are named: the safe candidate that needs the least free space (then the
@@ -63,6 +64,7 @@ __all__ = [
     "default_top_sliding_limit",
     "stack_of_system",
     "two_face_design",
+    "two_face_levels",
 ]
 
 OBJECTIVES = ("mean", "median", "max")
@@ -134,6 +136,41 @@ def friction_factors(scatter: float) -> tuple[float, ...]:
     return (1.0,) if s == 0.0 else (1.0 - s, 1.0, 1.0 + s)
 
 
+def two_face_levels(scatter: float, *, top_slips: bool = True) -> tuple[tuple[float, float], ...]:
+    """The friction levels of a two-face design, as (floor factor, top factor) on each face's
+    (μs, μk): the nominal (1, 1); both faces together (1 − s, 1 − s) and (1 + s, 1 + s); and in
+    opposite directions (1 + s, 1 − s) and (1 − s, 1 + s), since the two surfaces age apart.
+    A top face that never slips (``top_slips`` False) makes the top factor moot: the first three
+    only. Without scatter, the nominal only."""
+    s = _check_scatter(scatter)
+    if s == 0.0:
+        return ((1.0, 1.0),)
+    low, high = 1.0 - s, 1.0 + s
+    together = ((1.0, 1.0), (low, low), (high, high))
+    return together + ((high, low), (low, high)) if top_slips else together
+
+
+def _two_face_level_name(floor: float, top: float, *, top_slips: bool) -> str:
+    """A level of :func:`two_face_levels` in words: 'nominal μs', 'both faces μs·0.8',
+    'floor μs·1.2 with top μs·0.8' (or 'floor μs·0.8' when the top face never slips)."""
+    if floor == 1.0 and top == 1.0:
+        return "nominal μs"
+    if not top_slips:
+        return f"floor μs·{floor:g}"
+    if floor == top:
+        return f"both faces μs·{floor:g}"
+    return f"floor μs·{floor:g} with top μs·{top:g}"
+
+
+def _two_face_band(s: float, *, top_slips: bool = True) -> str:
+    """The friction levels of a two-face design in one phrase, for verdicts and rules."""
+    if s == 0:
+        return "at the nominal friction (no scatter)"
+    if not top_slips:
+        return f"with the floor face at μs and μs·(1 ± {s:g}) (μk alike; the top face never slips)"
+    return f"with both faces at μs and at μs·(1 ± {s:g}) together and in opposite directions (μk alike)"
+
+
 def run_undetermined(ds) -> np.ndarray:
     """Per run of a summaries Dataset: True where the statue did not overturn, yet the run does not
     prove that it stands: the statue is still moving at the end (``still_moving``, when the
@@ -167,13 +204,14 @@ def _names(names: Sequence[str], most: int = 6) -> str:
     return shown + (f" and {len(names) - most} more" if len(names) > most else "")
 
 
-def ranking_rule(friction_scatter: float, objective: str = "mean", *, two_face: bool = False) -> str:
+def ranking_rule(friction_scatter: float, objective: str = "mean", *, two_face: bool = False,
+                 top_slips: bool = True) -> str:
     """The ranking of :func:`choose_design` in one sentence, for reports and the web page
-    (``two_face``: of :func:`two_face_design`)."""
+    (``two_face``: of :func:`two_face_design`; ``top_slips`` False: its top face never slips)."""
     s = _check_scatter(friction_scatter)
     band = f"at μs and μs·(1 ± {s:g}), μk alike" if s > 0 else "at the nominal friction"
     if two_face:
-        band = f"with both faces at μs and μs·(1 ± {s:g}), μk alike" if s > 0 else "at the nominal friction"
+        band = _two_face_band(s, top_slips=top_slips) if s > 0 else "at the nominal friction"
         return (f"safety first: a candidate is safe if, under every motion {band}, no block falls, none slides to "
                 f"the edge of the block below and every run ends at rest; among the safe candidates that meet the "
                 f"limits, the smallest {objective} peak θ/α, the least free space on the floor, then the smaller "
@@ -282,6 +320,7 @@ def choose_design(
     top_sliding: Any = None,
     top_sliding_limit: Any = None,
     top_sliding_limit_text: str | None = None,
+    scatter_text: str | None = None,
 ) -> DesignChoice:
     """Rank the candidates of a friction design and write its verdict: the one place where the
     rules live (``rocking design``, :func:`friction_design` and the web page's sweep use it).
@@ -329,6 +368,9 @@ def choose_design(
         pedestal's width); ``inf``: no limit. A limit like ``sliding_limit``.
     top_sliding_limit_text : str, optional
         The limit in words for the verdict (default: "statue's slide on the top face ≤ … mm").
+    scatter_text : str, optional
+        The friction levels the runs covered, in words (default: "at μs and μs·(1 ± s) (μk
+        alike)"); the two-face design names its levels in opposite directions too.
 
     Notes
     -----
@@ -361,6 +403,8 @@ def choose_design(
     n_mot = len(names)
     s = _check_scatter(friction_scatter)
     band = f"at μs and μs·(1 ± {s:g}) (μk alike)" if s > 0 else "at the nominal friction (no scatter)"
+    if scatter_text is not None:
+        band = scatter_text
 
     clear_max = clearance.max(axis=-1)
     miss_sliding = clear_max > sliding_limit if sliding_limit is not None else np.zeros(clear_max.shape, bool)
@@ -557,7 +601,9 @@ def friction_design(
 
     With a :class:`rocking.stack.Stack`, or with ``mu_s_top`` or ``pedestal_width``, both faces
     of the pedestal are designed on the stack engine: see :func:`two_face_design`, which takes
-    the same arguments and returns the same Dataset with two more candidate dimensions.
+    the same arguments and returns the same Dataset with two more candidate dimensions, and five
+    friction levels along ``friction_level`` (the faces also drifting in opposite directions)
+    instead of ``friction_factor``.
 
     Parameters
     ----------
@@ -927,8 +973,12 @@ def two_face_design(
     face* interface 2 (under block 2, the statue); the statue's rotation statistics are the top
     block's (the statue itself in a two-block stack). A :class:`System` is first turned into a
     two-block stack (:func:`stack_of_system`). Candidates are every floor μs × pedestal mass × top
-    μs × pedestal width; the friction scatter s multiplies the μs and μk of both faces together
-    (levels 1 − s, 1, 1 + s: the faces' drifts in opposite directions are not run).
+    μs × pedestal width. The two faces are different surfaces that age apart, so the friction
+    scatter s is run as five levels (floor factor, top factor) on each face's μs and μk
+    (:func:`two_face_levels`): (1, 1), both together (1 − s, 1 − s) and (1 + s, 1 + s), and in
+    opposite directions (1 + s, 1 − s), the worst for the statue's slide on the top face, and
+    (1 − s, 1 + s), the worst for the free space on the floor. A top face that never slips runs the
+    first three only; s = 0 the nominal only. Every result is the worst over the levels.
 
     Safety (:func:`choose_design`): a candidate is safe if, under every motion at every level, no
     block overturns, no block slides to the edge of the one below (status ``slid_past_edge``,
@@ -959,9 +1009,12 @@ def two_face_design(
     -------
     xarray.Dataset
         As :func:`friction_design`, with candidate dimensions ``mu_s``, ``pedestal_mass``,
-        ``mu_s_top`` and ``pedestal_width`` (and ``mu_k_top`` along ``mu_s_top``). Per run and
-        level also ``scatter_slid_off``, ``scatter_floor_sliding``, ``scatter_top_sliding`` (m,
-        the pedestal on the floor and the statue on the pedestal) and
+        ``mu_s_top`` and ``pedestal_width`` (and ``mu_k_top`` along ``mu_s_top``), and the
+        levels along ``friction_level`` instead of ``friction_factor``: named ("nominal μs",
+        "both faces μs·0.8", "floor μs·1.2 with top μs·0.8", …), with coordinates
+        ``floor_factor`` and ``top_factor``. Per run and level also ``scatter_slid_off``,
+        ``scatter_floor_sliding``, ``scatter_top_sliding`` (m, the pedestal on the floor and the
+        statue on the pedestal) and
         ``scatter_pedestal_rotation`` (rad); per candidate and motion ``slid_off`` and
         ``top_sliding`` (m, worst over the levels); per candidate ``slid_off_count``,
         ``top_sliding_max`` and ``pedestal_rotation_max``; per width ``top_sliding_limit`` (m).
@@ -1014,41 +1067,54 @@ def two_face_design(
                   else np.full(widths.shape, given_top_limit))
     top_limit_text = top_sliding_limit_text(widths, top_limits, default=given_top_limit is None)
 
-    factors = friction_factors(scatter)
-    nominal = factors.index(1.0)
+    # The faces are different surfaces and age apart: the levels where they drift in opposite
+    # directions are the worst for the statue's slide on top (top slipperier, floor gripping
+    # harder) and for the free space on the floor (the reverse). Without a top face that slips
+    # those levels would repeat the others, so they are not run.
+    top_slips = bool(np.isfinite(mus_top).all())
+    levels = two_face_levels(scatter, top_slips=top_slips)
     shape_c = (mus.size, masses.size, mus_top.size, widths.size)
     candidates = {}
     for (i, j, k, w) in np.ndindex(*shape_c):
-        for q, f in enumerate(factors):
-            floor = Friction(static=float(mus[i]) * f, kinetic=float(kin[i]) * f)
-            top = None if math.isinf(mus_top[k]) else Friction(static=float(mus_top[k]) * f,
-                                                                kinetic=float(kin_top[k]) * f)
+        for q, (f_floor, f_top) in enumerate(levels):
+            floor = Friction(static=float(mus[i]) * f_floor, kinetic=float(kin[i]) * f_floor)
+            top = None if math.isinf(mus_top[k]) else Friction(static=float(mus_top[k]) * f_top,
+                                                                kinetic=float(kin_top[k]) * f_top)
             blocks = (dataclasses.replace(pedestal, mass=float(masses[j]), width=float(widths[w])),) + stack.blocks[1:]
             faces = (dataclasses.replace(stack.interfaces[0], friction=floor),
                      dataclasses.replace(stack.interfaces[1], friction=top)) + stack.interfaces[2:]
             candidates[i, j, k, w, q] = Stack(blocks=blocks, interfaces=faces)
-    runs = [Run(candidates[key], name) for name in motions for key in np.ndindex(*shape_c, len(factors))]
+    runs = [Run(candidates[key], name) for name in motions for key in np.ndindex(*shape_c, len(levels))]
     options = dataclasses.replace(options, free_time_limit=float(free_time))
+    floor_factors = [f for f, _ in levels]
+    top_factors = [f for _, f in levels]
     meta = {"mu_s": mus.tolist(), "mu_k": kin.tolist(), "pedestal_mass": masses.tolist(),
             "mu_s_top": mus_top.tolist(), "mu_k_top": kin_top.tolist(), "pedestal_width": widths.tolist(),
-            "motions": list(motions), "friction_factor": list(factors), "engine": "stack"}
+            "motions": list(motions), "floor_factor": floor_factors, "top_factor": top_factors, "engine": "stack"}
+    # A folder of an earlier study (its levels were other runs) is refused by the store, whose
+    # fingerprint covers every run: never mixed with these levels.
     raw = run_stored(runs, motions, options=options, study="design", folder=folder, fresh=fresh, workers=workers,
                      chunk_size=chunk_size, progress=progress, meta=meta)
     statue = stack.blocks[-1]
     alpha = math.atan2(statue.width, statue.height)
     cand = TWO_FACE_CANDIDATE
-    run_dims = cand + ("motion", "friction_factor")
-    every = specs_dataset(raw, [r.system for r in runs], dims=("motion",) + cand + ("friction_factor",),
-                          shape=(len(motions),) + shape_c + (len(factors),))
+    run_dims = cand + ("motion", "friction_level")
+    every = specs_dataset(raw, [r.system for r in runs], dims=("motion",) + cand + ("friction_level",),
+                          shape=(len(motions),) + shape_c + (len(levels),))
     every = every.transpose(*run_dims, ...)
-    ds = every.isel(friction_factor=nominal, drop=True)
+    ds = every.isel(friction_level=levels.index((1.0, 1.0)), drop=True)
+    names = [_two_face_level_name(f, g, top_slips=top_slips) for f, g in levels]
     ds = ds.assign_coords(mu_s=mus, pedestal_mass=masses, mu_s_top=mus_top, pedestal_width=widths,
-                          motion=list(motions), friction_factor=list(factors))
+                          motion=list(motions), friction_level=names,
+                          floor_factor=("friction_level", floor_factors), top_factor=("friction_level", top_factors))
     ds["mu_s"].attrs["long_name"] = "static friction of the pedestal on the floor"
     ds["mu_s_top"].attrs["long_name"] = "static friction of the statue on the pedestal (inf: never slips)"
     ds["pedestal_mass"].attrs["units"] = "kg"
     ds["pedestal_width"].attrs["units"] = "m"
-    ds["friction_factor"].attrs["long_name"] = "friction of both faces (μs and μk) over its nominal value"
+    ds["friction_level"].attrs["long_name"] = "friction level of the two faces (the scatter, together and apart)"
+    ds["floor_factor"].attrs["long_name"] = "floor-face friction (μs and μk) over its nominal value"
+    ds["top_factor"].attrs["long_name"] = ("top-face friction (μs and μk) over its nominal value (moot where the "
+                                           "top face never slips)")
 
     status = every.status.values.astype(str)
     over = every.block_overturned.any("block").values | (status == "overturned")
@@ -1132,6 +1198,7 @@ def two_face_design(
         subject="pedestal faces",
         top_sliding=top_env.max(axis=-1), top_sliding_limit=top_limits,
         top_sliding_limit_text=top_limit_text if np.isfinite(top_limits).any() else None,
+        scatter_text=_two_face_band(scatter, top_slips=top_slips),
     )
     work = ""
     shown = choice.recommended if choice.recommended is not None else choice.fewest_overturns
@@ -1140,10 +1207,10 @@ def two_face_design(
         work = face_work(float(floor_slide[shown].max()), float(top_slide[shown].max()),
                          float(rot[shown][stands].max()) if stands.any() else 0.0, float(ped_rot[shown].max()))
         which = "the recommended design" if choice.recommended is not None else "the candidate with the fewest falls"
-        levels = "motions and friction levels" if len(factors) > 1 else "motions"
+        over_what = "motions and friction levels" if len(levels) > 1 else "motions"
         lines = list(choice.lines)
         lines.insert(_after_recommendation(lines),
-                     f"Which face does the work, for {which} (largest over the {levels}): {work}.")
+                     f"Which face does the work, for {which} (largest over the {over_what}): {work}.")
         choice = dataclasses.replace(choice, lines=tuple(lines))
     ds["safe"] = (cand, choice.safe, {
         "long_name": "nothing falls or slides off, and every run ends at rest, under every motion at every level"})
@@ -1201,7 +1268,8 @@ def candidate_table(ds):
     """One row per candidate (μs, pedestal mass; and top μs, pedestal width for a two-face design)
     with the aggregated results (a pandas DataFrame).
 
-    The results are the worst over the friction levels μs·(1 − s), μs, μs·(1 + s);
+    The results are the worst over the friction levels μs·(1 − s), μs, μs·(1 + s) (a two-face
+    design: over its ``friction_level``, both faces together and apart);
     ``peak_sliding_max`` is the free space the pedestal needs (m)."""
     columns = list(CANDIDATE_COLUMNS) + (list(TWO_FACE_COLUMNS) if "mu_s_top" in ds.dims else [])
     table = ds[columns].to_dataframe().reset_index()
@@ -1277,8 +1345,7 @@ def design_report(ds, *, title: str = "Friction design", chart: str | None = "de
             f"{ds.sizes['mu_s']} × {ds.sizes['pedestal_mass']} candidate(s) (μs × pedestal mass)."
         )
     if s > 0 and "mu_s_top" in ds.dims:
-        lines.append(f"Friction scatter s = {s:g}: every candidate also runs with the μs and μk of both faces times "
-                     f"(1 − s) and (1 + s), and every result below is the worst of the three levels.")
+        lines.append(_two_face_scatter_line(ds, s))
     elif s > 0:
         lines.append(f"Friction scatter s = {s:g}: every candidate also runs at μs·(1 − s) and μs·(1 + s), with μk "
                      "scaled alike, and every result below is the worst of the three levels.")
@@ -1296,7 +1363,9 @@ def design_report(ds, *, title: str = "Friction design", chart: str | None = "de
             " (the default: design.top_sliding_limit not given)"
         limits.append(a["top_sliding_limit_text"] + rule)
     lines.append(f"Limits: {', '.join(limits) if limits else 'none'}.")
-    lines.append(f"Ranking: {ranking_rule(s, a['objective'], two_face='mu_s_top' in ds.dims)} (docs/studies.md).")
+    two = "mu_s_top" in ds.dims
+    top_slips = not two or _top_slips(ds)
+    lines.append(f"Ranking: {ranking_rule(s, a['objective'], two_face=two, top_slips=top_slips)} (docs/studies.md).")
     if "mu_s_top" in ds.dims:
         lines += _two_face_candidates(ds, n_mot)
         if chart:
@@ -1334,9 +1403,8 @@ def _faces_per_motion(ds, at: Mapping[str, float], what: str) -> list[str]:
     """The report's table of a two-face design: per motion, the slide on each face, the statue's
     rotation and its fate, for the candidate ``at`` (its coordinates)."""
     sel = ds.sel(**at)
-    factors = [float(f) for f in ds.friction_factor.values]
-    levels = (f"over the friction levels {_levels_text(factors, [True] * len(factors))}" if len(factors) > 1
-              else "at the nominal friction")
+    n_levels = ds.sizes["friction_level"]
+    levels = f"over the {n_levels} friction levels" if n_levels > 1 else "at the nominal friction"
     below, above = (ds.attrs.get("blocks", "pedestal\nstatue").split("\n") + ["statue"])[:2]
     room = float(sel.top_sliding_limit) if "top_sliding_limit" in sel else math.inf
     room_text = f", limit {_mm_limit(room)}" if math.isfinite(room) else ""
@@ -1353,11 +1421,11 @@ def _faces_per_motion(ds, at: Mapping[str, float], what: str) -> list[str]:
         slid = sel.scatter_slid_off.values[k]
         unsure = sel.scatter_undetermined.values[k]
         if over.any():
-            state = f"falls at {_levels_text(factors, over)}"
+            state = f"falls at {_named_levels(ds, over)}"
         elif slid.any():
-            state = f"slides to the edge of the {below} at {_levels_text(factors, slid)} (a fall risk)"
+            state = f"slides to the edge of the {below} at {_named_levels(ds, slid)} (a fall risk)"
         elif unsure.any():
-            state = f"undetermined at {_levels_text(factors, unsure)} (still moving at the end, or the run stopped)"
+            state = f"undetermined at {_named_levels(ds, unsure)} (still moving at the end, or the run stopped)"
         else:
             state = "stands"
         rot = sel.scatter_peak_rotation_over_alpha.values[k]
@@ -1368,6 +1436,32 @@ def _faces_per_motion(ds, at: Mapping[str, float], what: str) -> list[str]:
                    f"{_mm_cell(on_top)}{over_room} | "
                    f"{_fmt(float(rot[~over].max())) if (~over).any() else '–'} | {rocks} | {state} |")
     return out + [""]
+
+
+def _named_levels(ds, hit: Sequence[bool]) -> str:
+    """The friction levels of a two-face design where ``hit`` holds, by name ('every friction
+    level' when that is all of several)."""
+    hit = np.asarray(hit, dtype=bool)
+    if hit.size > 1 and hit.all():
+        return "every friction level"
+    return ", ".join(str(name) for name, h in zip(ds.friction_level.values, hit) if h)
+
+
+def _top_slips(ds) -> bool:
+    """Whether the top face of a two-face design may slip (its μs is finite)."""
+    return bool(np.isfinite(ds.mu_s_top.values).all())
+
+
+def _two_face_scatter_line(ds, s: float) -> str:
+    """The report's line on the friction levels a two-face design ran."""
+    if not _top_slips(ds):
+        return (f"Friction scatter s = {s:g}: the top face never slips, so every candidate also runs with the "
+                "floor face's μs and μk times (1 − s) and (1 + s), and every result below is the worst of the three "
+                "levels.")
+    return (f"Friction scatter s = {s:g}: the two faces are different surfaces and age apart, so every candidate "
+            f"also runs with both faces at μs·(1 ± s) together and in opposite directions (μk alike): "
+            f"{', '.join(str(v) for v in ds.friction_level.values[1:])}; every result below is the worst of the "
+            f"five levels.")
 
 
 def _two_face_inputs(ds) -> list[str]:
@@ -1473,8 +1567,12 @@ def plot_design(ds, *, panel_size: tuple[float, float] = (5.0, 4.4)):
             mine.sharey(theirs)
     note = "" if ds.attrs.get("meets_every_requirement", 1) else "no candidate met every requirement\n"
     what = "both faces of the pedestal" if two else "the pedestal's floor friction"
-    strip.suptitle(f"Friction design of {what}\n{note}each point: the worst over the friction levels of the scatter",
-                   fontsize=9.5)
+    levels = "the friction levels of the scatter"
+    if two and ds.sizes["friction_level"] > 1:
+        levels = (f"the {ds.sizes['friction_level']} friction levels (both faces at μs·(1 ± s) together and in "
+                  "opposite directions)" if _top_slips(ds) else
+                  f"the {ds.sizes['friction_level']} friction levels (the floor face at μs·(1 ± s))")
+    strip.suptitle(f"Friction design of {what}\n{note}each point: the worst over {levels}", fontsize=9.5)
     strip.legend(handles=list(handles.values()), loc="lower center", ncol=min(len(handles), 5 if len(cols) > 1 else 3),
                  fontsize=7.5, frameon=False)
     return fig
