@@ -345,3 +345,19 @@ def test_only_impacts_on_a_held_pedestal_count_as_short_of_floor_friction():
     top = max(i.friction_needed for i in held)
     assert [w for w in r.warnings if "needed more floor friction" in w] == [
         f"{len(held)} impact(s) needed more floor friction than μs (up to {top:.3f}); the paper's impact law ignores this"]
+
+
+def test_a_statue_held_by_an_upward_floor_acceleration_stays_at_rest():
+    """Under a floor accelerating upwards at a_v = 5 m/s², a statue (tan α = 0.25) starts to rock
+    only past (g + a_v)·tan α = 3.70 m/s²; a horizontal 3 m/s² from t = 0, above g·tan α and
+    (g − a_v)·tan α, must leave it at rest. Kills models/modes.py:108 (`g − a_v` in the regime
+    selection, which starts it rocking at t = 0)."""
+    from rocking.excitation.record import GroundMotion
+
+    t = np.arange(0.0, 1.0, 0.01)
+    motion = GroundMotion(time=t, values=np.full(t.size, 3.0), vertical=np.full(t.size, 5.0))
+    statue = rk.Statue(width=0.5, height=2.0, mass=100.0)
+    assert 9.81 * 0.25 < 3.0 < (9.81 + 5.0) * 0.25
+    r = rk.simulate(rk.System(statue=statue), motion)
+    assert r.peak_rotation == 0.0 and r.summary()["first_rocking_time"] is None, r.verdict
+    assert not [w for w in r.warnings if "strictly consistent" in w]
