@@ -309,11 +309,11 @@ def test_two_face_chart_has_a_row_per_top_face_and_numbers_what_it_clips(top_fac
     fig = plot_design(ds)
     panels = _panels(fig)
     assert [t for t, _ in panels] == ["top face μs 0.15, width 2 m", "top face μs 0.6, width 2 m"]
-    assert len(fig.axes) == 6  # θ/α, fall rate, sliding: each on its own axes
+    assert len(fig.axes) == 6  # θ/α, fall/edge rate, sliding: each on its own axes
     ax = panels[0][1]
     assert [line.get_label() for line in ax.sliding_ax.get_lines()][:2] == ["pedestal on the floor",
                                                                              "statue on the top face"]
-    assert ax.rate_ax.get_ylabel() == "fall\nrate (–)" and ax.get_ylabel() == "mean peak\n|θ|/α (–)"
+    assert ax.rate_ax.get_ylabel() == "fall/edge\nrate (–)" and ax.get_ylabel() == "mean peak\n|θ|/α (–)"
     # both motions topple the statue on the gripping top face: θ/α = π/(2α) = 6.41, clipped and numbered
     clipped = panels[1][1]
     assert float(ds.peak_rotation_ratio_mean.sel(mu_s_top=0.6).item()) == pytest.approx(6.41, abs=0.005)

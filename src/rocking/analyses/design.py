@@ -1544,7 +1544,7 @@ def plot_design(ds, *, panel_size: tuple[float, float] = (5.0, 4.4)):
                 recommended=float(sub.mu_s.values[rec][0]) if rec.any() else None,
                 friction_scatter=float(ds.attrs.get("friction_scatter", 0.0)),
                 top_sliding=sub.top_sliding_max.values if two else None,
-                rate_label="fall rate" if two else "overturn rate", rotation_label=f"{stat} peak\n|θ|/α (–)",
+                rate_label="fall/edge rate" if two else "overturn rate", rotation_label=f"{stat} peak\n|θ|/α (–)",
                 sliding_limit=limit if np.isfinite(limit) else None,
                 top_sliding_limit=float(sub.top_sliding_limit) if two else None, sliding_max=sliding_max)
             rot_axes.append(ax)
