@@ -361,3 +361,103 @@ def test_a_statue_held_by_an_upward_floor_acceleration_stays_at_rest():
     r = rk.simulate(rk.System(statue=statue), motion)
     assert r.peak_rotation == 0.0 and r.summary()["first_rocking_time"] is None, r.verdict
     assert not [w for w in r.warnings if "strictly consistent" in w]
+
+
+# ------------------------------------------------------------------------------------------------
+# models/transitions.py and models/modes.py: a grazing touch of the rocking threshold, a jump
+# ------------------------------------------------------------------------------------------------
+
+
+def test_a_grazing_touch_of_the_rocking_threshold_leaves_the_statue_at_rest():
+    """A statue (tan α = 1/6, r = 0.5) set rocking at 0.3 rad/s settles at 0.69 s; the floor then
+    peaks (Ricker crest, 0.75 s) at g·tan α·(1 + 1e-10). The rocking threshold is reached and
+    left again inside one step, at rest: the onset is found only by tracking the threshold guard
+    at the step's stages, and at once θ goes the wrong way. There was no uplift: the statue
+    stays at rest (θ = θ̇ = 0 after), the settling is no impact and loses no energy, and the input
+    work of the earlier rocking stays in the energy ledger. Kills transitions.py:43 (the
+    tangency reported as an impact), transitions.py:41 (`y[4] = 0` for `y[3] = 0`: the input
+    work dropped), modes.py:171 (`+1e-9·g/R` for `−1e-9·g/R`: an onset at the crest is flagged
+    inconsistent) and modes.py:86 (`s == 1`, `not s == 0`: the threshold not tracked at rest)."""
+    from rocking.models.regimes import EventKind, Regime
+
+    statue = rk.Statue(width=0.2, height=1.2, mass=50.0, restitution=0.5)
+    crest = rk.g * (0.2 / 1.2) * (1.0 + 1e-10)
+    r = rk.simulate(rk.System(statue=statue), rk.RickerPulse(amplitude=crest, frequency=2.0),
+                    initial_angular_velocity=0.3)
+    *rocking, uplift, settle = r.events
+    assert (uplift.kind, uplift.before, uplift.after) == (EventKind.UPLIFT, Regime.REST, Regime.ROCK)
+    assert uplift.time == pytest.approx(0.75, abs=1e-5)
+    assert (settle.kind, settle.time, settle.after) == (EventKind.SETTLE, uplift.time, Regime.REST)
+    assert rocking[-1].kind == EventKind.SETTLE and rocking[-1].time < 0.7
+    assert r.summary()["impacts"] == sum(e.kind in (EventKind.IMPACT, EventKind.SETTLE) for e in rocking)
+    assert list(r.event_table[-1, 6:9]) == [0.0, 0.0, 0.0]  # θ̇ before and after, energy lost
+    after = r.t >= uplift.time
+    assert after.sum() > 10 and not np.any(r.theta[after]) and not np.any(r.theta_dot[after])
+    energy = r.energy
+    assert abs(energy["input_work"]) > 0.01 * energy["impact_dissipation"]
+    assert energy["relative_balance_error"] < 1e-8
+    assert not [w for w in r.warnings if "strictly consistent" in w]
+
+
+def test_a_jump_of_the_floor_motion_that_starts_the_rocking_is_an_event():
+    """A record that begins at t = 1 s (zero before) jumps from 0 to 3 m/s², above g·tan α =
+    1.63 m/s²: the statue starts to rock at the jump, which the events list as a BREAKPOINT
+    (rest → rock). Kills transitions.py:18 (`EV_BREAKPOINT = 9`, a kind no EventKind has)."""
+    from rocking.excitation.record import GroundMotion
+    from rocking.models.regimes import EventKind, Regime
+
+    t = np.linspace(1.0, 1.5, 51)
+    r = rk.simulate(rk.System(statue=_SLENDER), GroundMotion(time=t, values=np.full(t.size, 3.0)))
+    assert r.events[0] == (1.0, EventKind.BREAKPOINT, Regime.REST, Regime.ROCK)
+    assert r.summary()["first_rocking_time"] == 1.0
+    assert r.overturned
+
+
+def test_top_friction_needed_at_impacts_on_a_sliding_pedestal():
+    """On a light pedestal (20 kg under the 50 kg statue, μs = 0.18) that slides under a 2.5 m/s²
+    sine pulse, every impact of the statue happens while the pedestal slides (u̇⁻ ≈ ±0.01 m/s),
+    and the largest friction the statue's base needs in the run is that of those impacts,
+    |Fx|/Fy with Fx = m2 (Δu̇ + h Δθ̇): only the change of the pedestal's velocity enters, not the
+    velocity itself. Kills transitions.py:58 (`u̇⁺ + u̇⁻` and `u̇⁺ − θ` for `u̇⁺ − u̇⁻`, which
+    make the demand ~10⁵ here, where θ̇ is small)."""
+    from rocking.models.regimes import EventKind
+
+    pedestal = rk.Pedestal(mass=20.0, friction=rk.Friction(static=0.18, kinetic=0.144))
+    r = rk.simulate(rk.System(statue=_SLENDER, pedestal=pedestal), rk.SinePulse(amplitude=2.5, frequency=1.5))
+    impact_times = {e.time for e in r.events if e.kind == EventKind.IMPACT}
+    impacts = [i for i in r.impacts if i.time in impact_times]
+    assert len(impacts) >= 20
+    assert all(abs(i.u_dot_before) > 0.005 and i.u_dot_after != i.u_dot_before for i in impacts)
+    assert r.summary()["required_top_friction"] == pytest.approx(max(_top_ratio_of(i) for i in impacts), rel=1e-9)
+
+
+def test_a_friction_demand_that_exceeds_mus_for_a_fraction_of_a_step_starts_the_slide():
+    """A light statue (50 g) rocks on a 20 g pedestal the floor holds (μs = 10). The friction
+    demand |F|/N peaks at 0.2062 (F < 0) at 0.163 s, while the statue rocks, with N below 1 N.
+    With μs a millionth below that peak the demand exceeds μs for well under a millisecond,
+    inside one step of ~0.02 s whose ends both see the pedestal held: the slide must start there,
+    found by tracking the friction guards at the step's stages. Kills modes.py:83 (`cap − F` for
+    `cap + F`: the negative direction not tracked) and modes.py:81 (`μs / N` for `μs·N`, which
+    with N < 1 N overstates the margin)."""
+    from rocking.models.regimes import EventKind, Regime
+
+    statue = rk.Statue(width=0.2, height=1.2, mass=0.05, restitution=0.8)
+    motion = rk.SinePulse(amplitude=2.5, frequency=1.5, phase=math.pi)
+
+    def run(mu_s, **kwargs):
+        pedestal = rk.Pedestal(mass=0.02, friction=rk.Friction(static=mu_s, kinetic=0.8 * mu_s))
+        return rk.simulate(rk.System(statue=statue, pedestal=pedestal), motion, duration=0.3, **kwargs)
+
+    held = run(10.0, options=rk.Options(save_dt=1e-5))
+    forces = held.contact_forces()
+    demand = np.where((held.t > 0.1) & (held.t < 0.25), forces["F"] / forces["N"], 0.0)
+    i = int(np.argmax(np.abs(demand)))
+    t_peak, peak = held.t[i], abs(demand[i])
+    assert demand[i] < 0.0 and held.regime[i] == Regime.ROCK and forces["N"].max() < 1.0
+    assert not [e for e in held.events if e.kind == EventKind.SLIP]
+
+    slips = [e for e in run(peak * (1.0 - 1e-6)).events if e.kind == EventKind.SLIP]
+    assert slips, "the slide was missed"
+    slip = slips[0]
+    assert (slip.before, slip.after) == (Regime.ROCK, Regime.SLIDE_ROCK)
+    assert t_peak - 1e-3 < slip.time <= t_peak + 1e-5
