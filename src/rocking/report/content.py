@@ -437,17 +437,23 @@ def _clearance_check(response, s: Mapping[str, Any], clearance: float | None) ->
     body = "pedestal" if system.pedestal is not None else "statue"
     if clearance is None and system.floor_friction is None:
         return None  # nothing slides and no free space was given: nothing to compare
-    name = f"peak sliding of the {body} ≤ the free space around it (clearance)"
-    peak = s["peak_sliding"]
+    undetermined = s["verdict"].startswith("undetermined") and not s["overturned"]
+    return sliding_check(f"the {body}", f"peak sliding of the {body}", s["peak_sliding"], clearance, undetermined)
+
+
+def sliding_check(subject: str, what: str, peak: float, clearance: float | None, undetermined: bool) -> Check:
+    """``what`` (peak sliding of ``subject``, m) against the free space around it; ``undetermined``:
+    the run ended before the motion did, so it may slide further."""
+    name = f"{what} ≤ the free space around it (clearance)"
     if clearance is None:
         return Check(name, _mm(peak), "no clearance given", NOT_CHECKED)
     limit = _mm(clearance)
     if peak > clearance:
         return Check(name, _mm(peak), limit, FAIL, warning=(
-            f"The {body} slides up to {_mm(peak)}, beyond the {limit} of free space around it: it would "
-            "hit what surrounds it, which this model does not simulate."))
-    if s["verdict"].startswith("undetermined") and not s["overturned"]:
-        return Check(name, _mm(peak), limit, UNDETERMINED)  # it may slide further after the run's end
+            f"{subject[:1].upper()}{subject[1:]} slides up to {_mm(peak)}, beyond the {limit} of free space around "
+            "it: it would hit what surrounds it, which this model does not simulate."))
+    if undetermined:
+        return Check(name, _mm(peak), limit, UNDETERMINED)
     return Check(name, _mm(peak), limit, PASS)
 
 

@@ -30,6 +30,7 @@ from .content import (
     _motion_rows,
     _time,
     check_clearance,
+    sliding_check,
     inputs_from_mapping,
     provenance,
 )
@@ -200,18 +201,8 @@ def _clearance_check(response: Any, clearance: float | None) -> Check | None:
     if clearance is None and stack.interfaces[0].friction is None:
         return None  # nothing slides on the floor and no free space was given
     label = block_label(stack, 0)
-    name = f"peak sliding of {label} on the floor ≤ the free space around it (clearance)"
-    peak = float(response.blocks[0]["peak_sliding"])
-    if clearance is None:
-        return Check(name, _mm(peak), "no clearance given", NOT_CHECKED)
-    limit = _mm(clearance)
-    if peak > clearance:
-        return Check(name, _mm(peak), limit, FAIL, warning=(
-            f"{_capital(label)} slides up to {_mm(peak)}, beyond the {limit} of free space around it: it would hit "
-            "what surrounds it, which this model does not simulate."))
-    if _undetermined(response):
-        return Check(name, _mm(peak), limit, UNDETERMINED)
-    return Check(name, _mm(peak), limit, PASS)
+    return sliding_check(label, f"peak sliding of {label} on the floor", float(response.blocks[0]["peak_sliding"]),
+                         clearance, _undetermined(response))
 
 
 def stack_checks(response: Any, clearance: float | None = None) -> list[Check]:
