@@ -287,7 +287,9 @@ def _leaves(d: dict, prefix: tuple = ()) -> list[tuple]:
 def _set(d: dict, path: tuple, value: Any) -> None:
     for k in path[:-1]:
         d = d[k]
-    d[path[-1]] = value
+    # a copy: sampled_from hands out the same {} / [] / dict object at every draw, and a later
+    # draw could set a key of that very object to itself (a cycle the walk never leaves)
+    d[path[-1]] = copy.deepcopy(value)
 
 
 def _check_config(config: Any, **kwargs: Any) -> Config | None:
