@@ -399,6 +399,29 @@ def test_a_grazing_touch_of_the_rocking_threshold_leaves_the_statue_at_rest():
     assert not [w for w in r.warnings if "strictly consistent" in w]
 
 
+def test_a_crest_at_the_threshold_to_an_ulp_at_the_start_settles_once():
+    """A cos harmonic whose crest, at t = 0, is g·tan α·(1 + 1e-15): rounding makes rocking the
+    regime chosen at t = 0 and θ goes the wrong way at once. Before the fix, the settling chose
+    rocking again at the same instant: 100 000 SETTLE events at t = 0 and status "max_events",
+    so no verdict. Now one SETTLE (rock → rest) at t = 0, the statue stays at rest until the
+    last crest (t = 2 s), and the run matches the one with a crest 1e-12 above the threshold,
+    which rocks for 0.4 µs and settles (the onset at the last crest to 1e-6 s)."""
+    from rocking.models.regimes import EventKind, Regime
+
+    runs = [rk.simulate(rk.System(statue=_SLENDER),
+                        rk.Harmonic(amplitude=rk.g * (0.2 / 1.2) * (1.0 + f), frequency=1.5, cycles=3))
+            for f in (1e-15, 1e-12)]
+    tied, above = runs
+    assert tied.status == "completed" and len(tied.events) == 3
+    assert tied.events[0] == (0.0, EventKind.SETTLE, Regime.ROCK, Regime.REST)
+    before_last_crest = tied.t < 1.99
+    assert before_last_crest.sum() > 100 and not np.any(tied.theta[before_last_crest])
+    assert tied.summary()["first_rocking_time"] == pytest.approx(2.0, abs=1e-6)
+    assert [e.kind for e in tied.events] == [e.kind for e in above.events]
+    assert tied.events[1].time == pytest.approx(above.events[1].time, abs=1e-6)
+    assert tied.summary()["peak_rotation"] < 1e-20 and not tied.overturned
+
+
 def test_a_jump_of_the_floor_motion_that_starts_the_rocking_is_an_event():
     """A record that begins at t = 1 s (zero before) jumps from 0 to 3 m/s², above g·tan α =
     1.63 m/s²: the statue starts to rock at the jump, which the events list as a BREAKPOINT
