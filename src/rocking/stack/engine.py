@@ -50,7 +50,7 @@ from .modes import (
     reanchor,
     refresh_ends,
     select_mode,
-    solve_mode,
+    solve_mode_in,
 )
 
 N_SUB = 4  # interior points of a step where the guards are sampled
@@ -84,12 +84,12 @@ EVENT_FOLLOWS = -2  # another interface's mode changed at an event
 N_BLOCK_SUMMARY = 11
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _ground(loc, t):
     return local_value(loc, 0, t), local_value(loc, LOCAL_SIZE, t)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def slip_of(P, ends, anchor, k, z):
     """Relative sliding of block k on what it stands on, m: how far the contact point has moved
     along the face from where it started (the anchor corner's displacement, which a rocking
@@ -102,27 +102,41 @@ def slip_of(P, ends, anchor, k, z):
 
 
 @njit(cache=True)
-def evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, dy, lam):
+def new_workspace(n):
+    """Scratch arrays of n blocks for :func:`evaluate` and the step loop, made once per run: a
+    step evaluates the right-hand side about 20 times, and allocating these at every evaluation
+    cost more than the mechanics (bench/stack.py). Layout: the frame of
+    :func:`rocking.stack.kinematics.forward` (A, β, C, X, Ẋ, Θ, Θ̇), then M, f, z̈, the four
+    scratch arrays of :func:`rocking.stack.modes.solve_mode_in`, then dy, Λ, a state-sized work
+    array and Λ at the end of the last step."""
+    nz = 3 * n
+    A, beta, C, X, Xd, th, thd = new_frame(n)
+    return (A, beta, C, X, Xd, th, thd, np.zeros((nz, nz)), np.zeros(nz), np.zeros(nz),
+            np.zeros(nz, dtype=np.bool_), np.zeros(nz, dtype=np.int64), np.zeros(nz, dtype=np.int64),
+            np.zeros((nz, nz)), np.zeros(nz), np.zeros(2 * nz + 2), np.zeros(nz), np.zeros(2 * nz + 2),
+            np.zeros(nz))
+
+
+@njit(cache=True, _nrt=False)
+def evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, dy, lam, ws):
     """Right-hand side dy/dt of the current mode at (t, y); ``lam`` receives the contact forces
-    (Λ on the frozen coordinates). Returns False if the mode's equations are singular."""
+    (Λ on the frozen coordinates). Returns False if the mode's equations are singular. ``ws``:
+    :func:`new_workspace` (its frame and solve scratch are overwritten)."""
     ah, av = _ground(loc, t)
-    return evaluate_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, dy, lam)
+    return evaluate_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, dy, lam, ws)
 
 
-@njit(cache=True)
-def evaluate_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, dy, lam):
+@njit(cache=True, _nrt=False)
+def evaluate_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, dy, lam, ws):
     """:func:`evaluate` under the floor accelerations ah, av (m/s²) rather than at a time."""
     n = P.shape[0]
     nz = 3 * n
     z = y[:nz]
     zd = y[nz:2 * nz]
-    A, beta, C, X, Xd, th, thd = new_frame(n)
-    M = np.zeros((nz, nz))
-    f = np.zeros(nz)
+    A, beta, C, X, Xd, th, thd, M, f, zdd, frozen, free, row_of, Kr, br = ws[:15]
     forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, th, thd)
     mass_and_forces(P, A, beta, C, ah, av, gravity, M, f)
-    zdd = np.zeros(nz)
-    ok = solve_mode(M, f, P, nstate, tstate, zdd, lam)
+    ok = solve_mode_in(M, f, P, nstate, tstate, zdd, lam, frozen, free, row_of, Kr, br)
     for i in range(nz):
         dy[i] = zd[i]
         dy[nz + i] = zdd[i]
@@ -138,21 +152,26 @@ def evaluate_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, dy, lam):
     return ok
 
 
-@njit(cache=True)
-def guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g, held):
+@njit(cache=True, _nrt=False)
+def guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g, held, ws):
     """Guard values (N × N_GUARD_SLOTS, flattened), positive while the mode holds."""
     ah, av = _ground(loc, t)
-    guards_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, g, held)
+    guards_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, g, held, ws)
 
 
-@njit(cache=True)
-def guards_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, g, held):
+@njit(cache=True, _nrt=False)
+def guards_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, g, held, ws):
     """:func:`guards` under the floor accelerations ah, av (m/s²) rather than at a time."""
+    dy, lam = ws[15], ws[16]
+    evaluate_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, dy, lam, ws)
+    guards_from(P, ends, anchor, nstate, tstate, y, lam, g, held)
+
+
+@njit(cache=True, _nrt=False)
+def guards_from(P, ends, anchor, nstate, tstate, y, lam, g, held):
+    """:func:`guards` at the state y whose contact forces ``lam`` are known."""
     n = P.shape[0]
     nz = 3 * n
-    dy = np.empty(2 * nz + 2)
-    lam = np.zeros(nz)
-    evaluate_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, dy, lam)
     z = y[:nz]
     zd = y[nz:2 * nz]
     for k in range(n):
@@ -194,48 +213,49 @@ def guards_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, g, held):
 
 
 @njit(cache=True)
-def _rest_band(P, ends, anchor, nstate, tstate, y, gravity, held, band0, band_h, band_v):
+def _rest_band(P, ends, anchor, nstate, tstate, y, gravity, held, band0, band_h, band_v, ws):
     """The guards of a stack at rest as affine functions of the floor accelerations: their values
     at (a_h, a_v) = (0, 0) and their slopes along a_h and a_v (fills band0, band_h, band_v)."""
-    guards_at(P, ends, anchor, nstate, tstate, 0.0, 0.0, y, gravity, band0, held)
-    guards_at(P, ends, anchor, nstate, tstate, 1.0, 0.0, y, gravity, band_h, held)
-    guards_at(P, ends, anchor, nstate, tstate, 0.0, 1.0, y, gravity, band_v, held)
+    guards_at(P, ends, anchor, nstate, tstate, 0.0, 0.0, y, gravity, band0, held, ws)
+    guards_at(P, ends, anchor, nstate, tstate, 1.0, 0.0, y, gravity, band_h, held, ws)
+    guards_at(P, ends, anchor, nstate, tstate, 0.0, 1.0, y, gravity, band_v, held, ws)
     for j in range(band0.shape[0]):
         band_h[j] -= band0[j]
         band_v[j] -= band0[j]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _band_guards(band0, band_h, band_v, loc, t, g):
     ah, av = _ground(loc, t)
     for j in range(g.shape[0]):
         g[j] = band0[j] + ah * band_h[j] + av * band_v[j]
 
 
-@njit(cache=True)
-def _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, out):
-    lam = np.zeros(3 * P.shape[0])
-    evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, out, lam)
+@njit(cache=True, _nrt=False)
+def _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, out, ws):
+    evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, out, ws[16], ws)
 
 
-@njit(cache=True)
-def _step(P, ends, anchor, nstate, tstate, t, y, h, loc, gravity, K, y_new, rtol, atol, n_ctrl):
-    work = np.empty(y.shape[0])
+@njit(cache=True, _nrt=False)
+def _step(P, ends, anchor, nstate, tstate, t, y, h, loc, gravity, K, y_new, rtol, atol, n_ctrl, ws):
+    """One DOP853 step; returns its error norm. The contact forces at its end (the FSAL stage)
+    are left in ws[18], for the guards and the tracking there."""
+    work = ws[17]
     for stage in range(1, dop853.N_STAGES):
         dop853.stage_input(y, K, h, stage, work)
-        _rhs(P, ends, anchor, nstate, tstate, t + dop853.C[stage] * h, work, loc, gravity, K[stage])
+        _rhs(P, ends, anchor, nstate, tstate, t + dop853.C[stage] * h, work, loc, gravity, K[stage], ws)
     dop853.advance(y, K, h, y_new)
-    _rhs(P, ends, anchor, nstate, tstate, t + h, y_new, loc, gravity, K[dop853.FSAL])
+    evaluate(P, ends, anchor, nstate, tstate, t + h, y_new, loc, gravity, K[dop853.FSAL], ws[18], ws)
     return dop853.error_norm(y, y_new, K, h, rtol, atol, n_ctrl)
 
 
-@njit(cache=True)
-def _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, h, loc, gravity, K, F):
-    work = np.empty(y.shape[0])
+@njit(cache=True, _nrt=False)
+def _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, h, loc, gravity, K, F, ws):
+    work = ws[17]
     for j in range(dop853.N_EXTRA):
         dop853.extra_stage_input(y, K, h, j, work)
         _rhs(P, ends, anchor, nstate, tstate, t + dop853.C_EXTRA[j] * h, work, loc, gravity,
-             K[dop853.FSAL + 1 + j])
+             K[dop853.FSAL + 1 + j], ws)
     dop853.prepare_dense(y, y_new, K, h, F)
 
 
@@ -299,6 +319,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
     x_sel = np.zeros(nz)
     lam_sel = np.zeros(nz)
     extra = np.zeros(nz)
+    ws = new_workspace(n)
     n_grid = int(math.floor(t_end / save_dt + 1e-9)) + 1
     cap = n_grid + 2 * max_events + 4
     ncol = 1 + N_BLOCK_COLS * n + N_IFACE_COLS * n + N_TAIL
@@ -346,10 +367,10 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
     y[:nz] = zv
     y[nz:2 * nz] = zdv
     e0 = _energy_of(P, ends, anchor, y, gravity)
-    _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity)
+    _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
     h = min(max_step, 1e-3)
     n_ctrl = ny  # the energy ledger too: it is checked to 1e-9
-    _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0])
+    _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0], ws)
     while status == STATUS_COMPLETED and t < t_end:
         # rest after the motion: nothing can move any more
         if t >= t_settle:
@@ -373,11 +394,11 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             # guard is not positive under the new formula
             if at_rest:
                 if not band_ok:
-                    _rest_band(P, ends, anchor, nstate, tstate, y, gravity, held, band0, band_h, band_v)
+                    _rest_band(P, ends, anchor, nstate, tstate, y, gravity, held, band0, band_h, band_v, ws)
                     band_ok = True
                 _band_guards(band0, band_h, band_v, loc, t, g0)
             else:
-                guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0, held)
+                guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0, held, ws)
             bad = False
             for j in range(ng):
                 if g0[j] <= 0.0 and _is_force(j, nstate, tstate):
@@ -397,7 +418,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 y[:nz] = zv
                 y[nz:2 * nz] = zdv
                 band_ok = False
-            _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0])
+            _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0], ws)
         if ib < nb:
             t_lim = min(t_lim, breakpoints[ib])
         if t_settle > t and t_settle < t_lim:
@@ -412,7 +433,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             # in the floor acceleration, is linear in time. Jump to the piece's end, or to the
             # exact root of the first guard that reaches zero, without integrating.
             if not band_ok:
-                _rest_band(P, ends, anchor, nstate, tstate, y, gravity, held, band0, band_h, band_v)
+                _rest_band(P, ends, anchor, nstate, tstate, y, gravity, held, band0, band_h, band_v, ws)
                 band_ok = True
             _band_guards(band0, band_h, band_v, loc, t, g0)
             _band_guards(band0, band_h, band_v, loc, t_lim, g1)
@@ -427,7 +448,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             while next_grid < n_grid and n_out < cap and next_grid * save_dt <= t_to:
                 if next_grid * save_dt >= t:
                     _save_row(P, ends, anchor, nstate, tstate, next_grid * save_dt, y, gravity, slip0, d_impact,
-                              samples, n_out)
+                              samples, n_out, ws)
                     n_out += 1
                 next_grid += 1
             t = t_to
@@ -438,14 +459,14 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                                                        first - k_ev * N_GUARD_SLOTS, tol_force, tol_rate,
                                                        rest_velocity, extra, x_sel, lam_sel, events, n_ev, d_impact,
                                                        summ, held)
-                _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity)
+                _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
                 if n_out < cap:
-                    _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, n_out)
+                    _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, n_out, ws)
                     n_out += 1
-            _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0])
+            _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0], ws)
             continue
         band_ok = False
-        err = _step(P, ends, anchor, nstate, tstate, t, y, hs, loc, gravity, K, y_new, rtol, atol, n_ctrl)
+        err = _step(P, ends, anchor, nstate, tstate, t, y, hs, loc, gravity, K, y_new, rtol, atol, n_ctrl, ws)
         if not (err <= 1.0) or not math.isfinite(err):
             h = hs * max(0.2, 0.9 * (err ** -0.125) if math.isfinite(err) and err > 0 else 0.2)
             if h < 1e-14:
@@ -454,19 +475,19 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
         # accepted: look for guard crossings inside the step, also where a guard dips below zero
         # and comes back within the step (a brief slip of a sine pulse's crest): the guards are
         # sampled at N_SUB interior points of the dense output
-        _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, hs, loc, gravity, K, F)
+        _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, hs, loc, gravity, K, F, ws)
         have_dense = True
-        guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0, held)
+        guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0, held, ws)
         first = -1
         x_first = 2.0
         x_lo = 0.0
         for sub in range(1, N_SUB + 1):
             x_hi = sub / N_SUB
             if sub == N_SUB:
-                guards(P, ends, anchor, nstate, tstate, t + hs, y_new, loc, gravity, g1, held)
+                guards(P, ends, anchor, nstate, tstate, t + hs, y_new, loc, gravity, g1, held, ws)
             else:
                 dop853.dense(y, F, x_hi, ym)
-                guards(P, ends, anchor, nstate, tstate, t + x_hi * hs, ym, loc, gravity, g1, held)
+                guards(P, ends, anchor, nstate, tstate, t + x_hi * hs, ym, loc, gravity, g1, held, ws)
             for j in range(ng):
                 if sub == 1 and j % N_GUARD_SLOTS == G_EDGE and g0[j] <= 0.0 and g1[j] < g0[j]:
                     # a block placed flush with the edge below that slides outwards: its corner
@@ -493,17 +514,17 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                     for probe in range(24):
                         xp *= 0.5
                         dop853.dense(y, F, xp, ym)
-                        guards(P, ends, anchor, nstate, tstate, t + xp * hs, ym, loc, gravity, gm, held)
+                        guards(P, ends, anchor, nstate, tstate, t + xp * hs, ym, loc, gravity, gm, held, ws)
                         if gm[j] > 0.0:
                             xr = _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, xp, x_hi,
-                                         gm[j], g1[j], ym, gm, held)
+                                         gm[j], g1[j], ym, gm, held, ws)
                             if xr < x_first:
                                 x_first = xr
                                 first = j
                             break
                 if g0[j] > 0.0 and g1[j] <= 0.0:
                     xr = _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_lo, x_hi,
-                                 g0[j], g1[j], ym, gm, held)
+                                 g0[j], g1[j], ym, gm, held, ws)
                     if xr < x_first:
                         x_first = xr
                         first = j
@@ -518,10 +539,10 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                     if gp[j] > 0.0 and g0[j] > 0.0 and g1[j] > 0.0 and g0[j] < gp[j] and g0[j] <= g1[j] \
                             and g0[j] < GRAZING * max(gp[j], g1[j]):
                         x_min, g_min = _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_a,
-                                                x_hi, ym, gm, held)
+                                                x_hi, ym, gm, held, ws)
                         if g_min <= 0.0:
                             xr = _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_a, x_min,
-                                         gp[j], g_min, ym, gm, held)
+                                         gp[j], g_min, ym, gm, held, ws)
                             if xr < x_first:
                                 x_first = xr
                                 first = j
@@ -535,17 +556,17 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             he = x_first * hs
             if he > 0.0:
                 # an 8th-order step to the event, not the interpolant
-                _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0])
-                _step(P, ends, anchor, nstate, tstate, t, y, he, loc, gravity, K, y_new, rtol, atol, n_ctrl)
+                _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0], ws)
+                _step(P, ends, anchor, nstate, tstate, t, y, he, loc, gravity, K, y_new, rtol, atol, n_ctrl, ws)
             else:
                 y_new[:] = y
             if next_grid < n_grid:
                 n_out, next_grid = _save_grid(P, ends, anchor, nstate, tstate, t, y, hs, F, have_dense, K, loc,
                                               gravity, save_dt, next_grid, n_grid, samples, n_out, cap, slip0,
-                                              d_impact, y_new, t + he)
+                                              d_impact, y_new, t + he, ws)
             t = t + he
             y[:] = y_new
-            _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity)
+            _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
             k_ev = first // N_GUARD_SLOTS
             slot = first - k_ev * N_GUARD_SLOTS
             status, d_impact, n_ev = _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k_ev,
@@ -560,23 +581,23 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             else:
                 repeats = 0
                 t_last_event = t
-            _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0])
-            _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity)
+            _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0], ws)
+            _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
             if n_out < cap:
-                _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, n_out)
+                _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, n_out, ws)
                 n_out += 1
             h = max(hs, 1e-6)
             continue
         if next_grid < n_grid:
             if not have_dense:
-                _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, hs, loc, gravity, K, F)
+                _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, hs, loc, gravity, K, F, ws)
             n_out, next_grid = _save_grid(P, ends, anchor, nstate, tstate, t, y, hs, F, True, K, loc, gravity,
                                           save_dt, next_grid, n_grid, samples, n_out, cap, slip0, d_impact, y_new,
-                                          t + hs)
+                                          t + hs, ws)
         t = t + hs
         y[:] = y_new
         K[0, :] = K[dop853.FSAL, :]
-        _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity)
+        _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
         for k in range(n):
             if held[k] and lam[3 * k + 2] > 0.0:
                 held[k] = False  # the contact pushes again: its force is watched again
@@ -587,15 +608,15 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             if nstate[k] != FLAT or tstate[k] != 0:
                 status = STATUS_STILL_MOVING
     if n_out < cap:
-        _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, n_out)
+        _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, n_out, ws)
         n_out += 1
     for k in range(n):
         summ[k, B_FINAL_SLIP] = slip_of(P, ends, anchor, k, y[:nz])
     return status, t, samples[:n_out], events[:n_ev], summ, e0, y, ends, anchor, nstate, tstate
 
 
-@njit(cache=True)
-def _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, hi, glo, ghi, ym, gm, held):
+@njit(cache=True, _nrt=False)
+def _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, hi, glo, ghi, ym, gm, held, ws):
     """Fraction of the step where guard j first reaches zero in [lo, hi], given g(lo) = glo > 0
     ≥ ghi = g(hi) (Illinois method on the dense output)."""
     side = 0
@@ -604,7 +625,7 @@ def _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, h
         if not (lo < xm < hi):
             xm = 0.5 * (lo + hi)
         dop853.dense(y, F, xm, ym)
-        guards(P, ends, anchor, nstate, tstate, t + xm * hs, ym, loc, gravity, gm, held)
+        guards(P, ends, anchor, nstate, tstate, t + xm * hs, ym, loc, gravity, gm, held, ws)
         gv = gm[j]
         if gv > 0.0:
             lo, glo = xm, gv
@@ -621,8 +642,8 @@ def _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, h
     return hi
 
 
-@njit(cache=True)
-def _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, hi, ym, gm, held):
+@njit(cache=True, _nrt=False)
+def _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, hi, ym, gm, held, ws):
     """(x, g) at the minimum of guard j over [lo, hi] of the step (golden section on the dense
     output); stops early once the guard is seen ≤ 0."""
     r = 0.6180339887498949
@@ -630,10 +651,10 @@ def _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, 
     c = b - r * (b - a)
     d = a + r * (b - a)
     dop853.dense(y, F, c, ym)
-    guards(P, ends, anchor, nstate, tstate, t + c * hs, ym, loc, gravity, gm, held)
+    guards(P, ends, anchor, nstate, tstate, t + c * hs, ym, loc, gravity, gm, held, ws)
     fc = gm[j]
     dop853.dense(y, F, d, ym)
-    guards(P, ends, anchor, nstate, tstate, t + d * hs, ym, loc, gravity, gm, held)
+    guards(P, ends, anchor, nstate, tstate, t + d * hs, ym, loc, gravity, gm, held, ws)
     fd = gm[j]
     for it in range(80):
         if fc <= 0.0:
@@ -646,13 +667,13 @@ def _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, 
             b, d, fd = d, c, fc
             c = b - r * (b - a)
             dop853.dense(y, F, c, ym)
-            guards(P, ends, anchor, nstate, tstate, t + c * hs, ym, loc, gravity, gm, held)
+            guards(P, ends, anchor, nstate, tstate, t + c * hs, ym, loc, gravity, gm, held, ws)
             fc = gm[j]
         else:
             a, c, fc = c, d, fd
             d = a + r * (b - a)
             dop853.dense(y, F, d, ym)
-            guards(P, ends, anchor, nstate, tstate, t + d * hs, ym, loc, gravity, gm, held)
+            guards(P, ends, anchor, nstate, tstate, t + d * hs, ym, loc, gravity, gm, held, ws)
             fd = gm[j]
     if fc < fd:
         return c, fc
@@ -677,14 +698,15 @@ def _kinetic_of(P, ends, anchor, z, zd):
     return kinetic_energy(P, Xd, thd)
 
 
-@njit(cache=True)
-def _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity):
+@njit(cache=True, _nrt=False)
+def _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, forces_known):
     """Peaks, first times, the friction each stuck interface needs, and the slip path, at the end
-    of a step or at an event (slip0 holds the previous slip of each interface)."""
+    of a step or at an event (slip0 holds the previous slip of each interface). ``lam`` receives
+    the contact forces at (t, y), unless ``forces_known`` (it holds them already)."""
     n = P.shape[0]
     nz = 3 * n
-    dy = np.empty(2 * nz + 2)
-    evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, dy, lam)
+    if not forces_known:
+        evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, ws[15], lam, ws)
     for k in range(n):
         # (not once the block is past its tipping angle and falling: N → 0 there)
         tipped = abs(y[3 * k + 1]) >= math.atan2(P[k, P_BU], P[k, P_HU])
@@ -714,11 +736,11 @@ def _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity
             summ[k, B_FIRST_SLIDE] = t
 
 
-@njit(cache=True)
-def _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, row):
+@njit(cache=True, _nrt=False)
+def _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, row, ws):
     n = P.shape[0]
     nz = 3 * n
-    A, beta, C, X, Xd, th, thd = new_frame(n)
+    A, beta, C, X, Xd, th, thd = ws[:7]
     forward(P, ends, anchor, y[:nz], y[nz:2 * nz], A, beta, C, X, Xd, th, thd)
     samples[row, 0] = t
     c = 1
@@ -739,11 +761,11 @@ def _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, s
     samples[row, c + 3] = d_impact
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _save_grid(P, ends, anchor, nstate, tstate, t, y, h, F, dense_ok, K, loc, gravity, save_dt, next_grid, n_grid,
-               samples, n_out, cap, slip0, d_impact, y_end, t_stop):
+               samples, n_out, cap, slip0, d_impact, y_end, t_stop, ws):
     """Save the grid points in [t, t_stop] from the dense output of the step (t, t + h)."""
-    ym = np.empty(y.shape[0])
+    ym = ws[17]
     while next_grid < n_grid and n_out < cap:
         tg = next_grid * save_dt
         if tg > t_stop + 1e-15 * max(1.0, t_stop):
@@ -754,17 +776,17 @@ def _save_grid(P, ends, anchor, nstate, tstate, t, y, h, F, dense_ok, K, loc, gr
         x = (tg - t) / h if h > 0.0 else 1.0
         if dense_ok:
             dop853.dense(y, F, x, ym)
-        elif x >= 1.0:
-            ym[:] = y_end
         else:
-            ym[:] = y
-        _save_row(P, ends, anchor, nstate, tstate, tg, ym, gravity, slip0, d_impact, samples, n_out)
+            src = y_end if x >= 1.0 else y
+            for j in range(ym.shape[0]):
+                ym[j] = src[j]
+        _save_row(P, ends, anchor, nstate, tstate, tg, ym, gravity, slip0, d_impact, samples, n_out, ws)
         n_out += 1
         next_grid += 1
     return n_out, next_grid
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _is_force(j, nstate, tstate):
     """Whether guard j is a contact force (N), not a gap or a slip velocity."""
     k = j // N_GUARD_SLOTS
@@ -776,14 +798,14 @@ def _is_force(j, nstate, tstate):
     return False
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _is_slip(j, nstate, tstate):
     """Whether guard j is the slip velocity σ·ȧ of a slipping interface."""
     k = j // N_GUARD_SLOTS
     return j - k * N_GUARD_SLOTS == G_STICK_POS and nstate[k] >= ROCK and tstate[k] != 0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _all_stuck(nstate, tstate):
     for k in range(nstate.shape[0]):
         if nstate[k] != FLAT or tstate[k] != 0:
@@ -810,7 +832,7 @@ def _select_ahead(P, ends, anchor, geo, t, z, zd, loc, gravity, extra, nstate, t
     y[2 * nz + 1] = 0.0
     dy = np.empty(2 * nz + 2)
     lam = np.zeros(nz)
-    evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, dy, lam)
+    evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, dy, lam, new_workspace(n))
     za = z + dt * dy[:nz]
     zda = zd + dt * dy[nz:2 * nz]
     for k in range(n):

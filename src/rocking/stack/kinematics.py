@@ -46,7 +46,7 @@ def _rot(phi):
     return math.cos(phi), math.sin(phi)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def relative_pose(P, ends, anchor, k, zk0, zk1, zk2, zd0, zd1, zd2):
     """Pose of block k in the frame of the block below, and its rate:
     (r_x, r_y, ṙ_x, ṙ_y), m and m/s, from z_k = (a, φ, d) and ż_k at the anchor."""
@@ -75,14 +75,20 @@ def relative_pose(P, ends, anchor, k, zk0, zk1, zk2, zd0, zd1, zd2):
     return rx, ry, rdx, rdy
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def end_gap(P, ends, anchor, k, z, zd, e):
     """(gap, gap rate) of end ``e`` (0 left, 1 right) of interface k, m and m/s: the distance
     of its corner from the face it touches, along that face's normal (> 0 open)."""
     i = 3 * k
-    rx, ry, rdx, rdy = relative_pose(P, ends, anchor, k, z[i], z[i + 1], z[i + 2], zd[i], zd[i + 1], zd[i + 2])
-    c, s = _rot(z[i + 1])
-    w = zd[i + 1]
+    return _end_gap(P, ends, anchor, k, z[i], z[i + 1], z[i + 2], zd[i], zd[i + 1], zd[i + 2], e)
+
+
+@njit(cache=True, _nrt=False)
+def _end_gap(P, ends, anchor, k, a, phi, d, ad, phid, dd, e):
+    """:func:`end_gap` from interface k's coordinates (a, φ, d) and their rates."""
+    rx, ry, rdx, rdy = relative_pose(P, ends, anchor, k, a, phi, d, ad, phid, dd)
+    c, s = _rot(phi)
+    w = phid
     hu, hl = P[k, P_HU], P[k, P_HL]
     x = ends[k, e, 1]
     if ends[k, e, 0] == END_U:
@@ -98,18 +104,15 @@ def end_gap(P, ends, anchor, k, z, zd, e):
     return -hu - qy, -qdy
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def end_gap_gradient(P, ends, anchor, k, z, e):
-    """∂(gap of end e)/∂(a, φ, d) of interface k at z, by the rate of :func:`end_gap` along the
-    three unit velocities (the gap rate is linear in ż)."""
-    n = z.shape[0]
-    zd = np.zeros(n)
-    out = np.empty(3)
-    for j in range(3):
-        zd[:] = 0.0
-        zd[3 * k + j] = 1.0
-        out[j] = end_gap(P, ends, anchor, k, z, zd, e)[1]
-    return out
+    """∂(gap of end e)/∂(a, φ, d) of interface k at z, a 3-tuple: the rate of :func:`end_gap`
+    along the three unit velocities (the gap rate is linear in ż)."""
+    i = 3 * k
+    a, phi, d = z[i], z[i + 1], z[i + 2]
+    return (_end_gap(P, ends, anchor, k, a, phi, d, 1.0, 0.0, 0.0, e)[1],
+            _end_gap(P, ends, anchor, k, a, phi, d, 0.0, 1.0, 0.0, e)[1],
+            _end_gap(P, ends, anchor, k, a, phi, d, 0.0, 0.0, 1.0, e)[1])
 
 
 @njit(cache=True)
@@ -137,7 +140,7 @@ def anchor_at(P, ends, anchor, k, z, zd, e_new, type_new, x_new):
     return qx, -hu - qy, qdx, -qdy
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, theta, theta_d):
     """Absolute poses and their acceleration maps, from the floor up (fills the arrays):
     X[k], Θ[k] (centre, m; rotation, rad), Ẋ[k], Θ̇[k], and A[k] (2 × 3N), β[k], C[k] (3N)
@@ -220,7 +223,7 @@ def new_frame(n):
             np.zeros(n), np.zeros(n))
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def mass_and_forces(P, A, beta, C, ah, av, gravity, M, f):
     """M = Σ m AᵀA + J CᵀC and f = Σ Aᵀ(F − m β), F = (−m a_h, −m (g + a_v)) (fills M, f)."""
     n = P.shape[0]
@@ -243,7 +246,7 @@ def mass_and_forces(P, A, beta, C, ah, av, gravity, M, f):
                 M[i, j] += m * (a0 * A[k, 0, j] + a1 * A[k, 1, j]) + J * ci * C[k, j]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def energy(P, X, Xd, theta_d, gravity):
     """Kinetic + potential energy relative to the floor, J (potential zero at y = 0)."""
     e = 0.0
@@ -253,7 +256,7 @@ def energy(P, X, Xd, theta_d, gravity):
     return e
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def kinetic_energy(P, Xd, theta_d):
     e = 0.0
     for k in range(P.shape[0]):

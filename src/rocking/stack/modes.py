@@ -67,7 +67,7 @@ N_CANDIDATES = 10
 SELECT_OK, SELECT_NONE, SELECT_HELD = 0, 1, 2
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frozen_set(nstate, tstate, P, frozen):
     """frozen[i] = True for the coordinates a mode holds fixed."""
     n = nstate.shape[0]
@@ -81,6 +81,15 @@ def frozen_set(nstate, tstate, P, frozen):
 
 @njit(cache=True)
 def solve_mode(M, f, P, nstate, tstate, x_out, lam_out):
+    """:func:`solve_mode_in` with its scratch arrays made here (for calls outside the step loop)."""
+    nz = f.shape[0]
+    return solve_mode_in(M, f, P, nstate, tstate, x_out, lam_out, np.zeros(nz, dtype=np.bool_),
+                         np.empty(nz, dtype=np.int64), np.empty(nz, dtype=np.int64), np.empty((nz, nz)),
+                         np.empty(nz))
+
+
+@njit(cache=True, _nrt=False)
+def solve_mode_in(M, f, P, nstate, tstate, x_out, lam_out, frozen, free, row_of, K, b):
     """Solve the mode's equations M z̈ = f + Λ: x_out = z̈ (or ż⁺), lam_out = Λ on frozen
     coordinates (and the friction force −μk σ Λ_d on a slipping a). Returns False if the system
     is singular. Only the columns of M of the free coordinates are read.
@@ -89,21 +98,19 @@ def solve_mode(M, f, P, nstate, tstate, x_out, lam_out):
     accelerations; each frozen row then gives its Λ = (M z̈ − f). A slipping a's row carries
     −μk σ Λ_d, with Λ_d the same expression of its interface's d, which folds into that row:
     (M_a + μk σ M_d) z̈ = f_a + μk σ f_d. The reduced system has one unknown per free coordinate
-    (1 to 3 in most modes, of 3N), which is what makes a mode's right-hand side cheap."""
+    (1 to 3 in most modes, of 3N), which is what makes a mode's right-hand side cheap.
+
+    frozen, free, row_of (3N), K (3N × 3N) and b (3N) are scratch arrays, overwritten."""
     nz = f.shape[0]
     n = nstate.shape[0]
-    frozen = np.zeros(nz, dtype=np.bool_)
     frozen_set(nstate, tstate, P, frozen)
-    free = np.empty(nz, dtype=np.int64)
-    row_of = np.full(nz, -1, dtype=np.int64)
     nf = 0
     for i in range(nz):
+        row_of[i] = -1
         if not frozen[i]:
             free[nf] = i
             row_of[i] = nf
             nf += 1
-    K = np.empty((nf, nf))
-    b = np.empty(nf)
     for r in range(nf):
         i = free[r]
         for c in range(nf):
@@ -160,7 +167,7 @@ def solve_mode(M, f, P, nstate, tstate, x_out, lam_out):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def flat_forces(P, ends, anchor, k, z, lam):
     """(N_anchor, N_other): the normal forces (or impulses) at the two ends of a flat interface,
     from Λ_d (the total) and Λ_φ (their moment about the anchor)."""
@@ -172,7 +179,7 @@ def flat_forces(P, ends, anchor, k, z, lam):
     return lam[i + 2] - n_other * grad[2], n_other
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def corner_x(P, ends, anchor, k, z):
     """x of the upper block's two bottom corners in the lower block's frame (m), for end
     identification and the slide-off check."""
