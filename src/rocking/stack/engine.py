@@ -15,7 +15,7 @@ import numpy as np
 from numba import njit
 
 from ..excitation.signal import LOCAL_LINEAR, LOCAL_SIZE, local_value
-from ..integrators import dop853
+from ..integrators import dop853, dopri5
 from .kinematics import (
     END_U,
     P_BL,
@@ -53,6 +53,7 @@ from .modes import (
     solve_mode_in,
 )
 
+FSAL5 = 6  # row of K holding the right-hand side at a Dormand–Prince 5(4) step's end
 N_SUB = 4  # interior points of a step where the guards are sampled
 LOOKAHEAD = 1e-9  # s (relative to t beyond 1 s): where the mode after an event is decided
 MAX_REPEATS = 50  # events at one instant before the run stops as inconsistent
@@ -250,6 +251,20 @@ def _step(P, ends, anchor, nstate, tstate, t, y, h, loc, gravity, K, y_new, rtol
 
 
 @njit(cache=True, _nrt=False)
+def _step5(P, ends, anchor, nstate, tstate, t, y, h, loc, gravity, K, y_new, rtol, atol, n_ctrl, ws):
+    """One Dormand–Prince 5(4) step, for a step cut short by a sample of a record (as
+    rocking.simulate): where DOP853's 12 stages would buy accuracy the short step already has.
+    Its end forces go to ws[18], its end right-hand side to K[FSAL5]."""
+    work = ws[17]
+    for stage in range(1, 6):
+        dopri5.stage_input(y, K, h, stage, work)
+        _rhs(P, ends, anchor, nstate, tstate, t + dopri5.C[stage] * h, work, loc, gravity, K[stage], ws)
+    dopri5.advance(y, K, h, y_new)
+    evaluate(P, ends, anchor, nstate, tstate, t + h, y_new, loc, gravity, K[FSAL5], ws[18], ws)
+    return dopri5.error_norm(y, y_new, K, h, rtol, atol, n_ctrl)
+
+
+@njit(cache=True, _nrt=False)
 def _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, h, loc, gravity, K, F, ws):
     work = ws[17]
     for j in range(dop853.N_EXTRA):
@@ -371,6 +386,9 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
     h = min(max_step, 1e-3)
     n_ctrl = ny  # the energy ledger too: it is checked to 1e-9
     _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0], ws)
+    # g0 holds the guards at (t, y) after a step accepted without an event (its end guards):
+    # the next step need not evaluate them again
+    g0_ok = False
     while status == STATUS_COMPLETED and t < t_end:
         # rest after the motion: nothing can move any more
         if t >= t_settle:
@@ -386,6 +404,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             ib += 1
             loc = pieces[ib]
             crossed = True
+            g0_ok = False
         at_rest = _all_stuck(nstate, tstate)
         if not at_rest:
             band_ok = False
@@ -423,9 +442,12 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             t_lim = min(t_lim, breakpoints[ib])
         if t_settle > t and t_settle < t_lim:
             t_lim = t_settle
-        hs = min(h, max_step, t_lim - t)
+        h_wanted = min(h, max_step)
+        hs = min(h_wanted, t_lim - t)
+        low_order = hs < h_wanted
         if hs <= 1e-15 * max(1.0, t):
             t = t_lim
+            g0_ok = False
             continue
         if _all_stuck(nstate, tstate) and loc[0] <= LOCAL_LINEAR and loc[LOCAL_SIZE] <= LOCAL_LINEAR:
             # Everything flat and stuck, the floor motion linear in time on this piece (a record
@@ -435,6 +457,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             if not band_ok:
                 _rest_band(P, ends, anchor, nstate, tstate, y, gravity, held, band0, band_h, band_v, ws)
                 band_ok = True
+            g0_ok = False
             _band_guards(band0, band_h, band_v, loc, t, g0)
             _band_guards(band0, band_h, band_v, loc, t_lim, g1)
             first = -1
@@ -466,25 +489,38 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0], ws)
             continue
         band_ok = False
-        err = _step(P, ends, anchor, nstate, tstate, t, y, hs, loc, gravity, K, y_new, rtol, atol, n_ctrl, ws)
+        if low_order:
+            err = _step5(P, ends, anchor, nstate, tstate, t, y, hs, loc, gravity, K, y_new, rtol, atol, n_ctrl, ws)
+            exponent = -0.2
+            fs = FSAL5
+        else:
+            err = _step(P, ends, anchor, nstate, tstate, t, y, hs, loc, gravity, K, y_new, rtol, atol, n_ctrl, ws)
+            exponent = -0.125
+            fs = dop853.FSAL
         if not (err <= 1.0) or not math.isfinite(err):
-            h = hs * max(0.2, 0.9 * (err ** -0.125) if math.isfinite(err) and err > 0 else 0.2)
+            h = hs * max(0.2, 0.9 * (err ** exponent) if math.isfinite(err) and err > 0 else 0.2)
             if h < 1e-14:
                 status = STATUS_STEP_FAILED
             continue
         # accepted: look for guard crossings inside the step, also where a guard dips below zero
         # and comes back within the step (a brief slip of a sine pulse's crest): the guards are
         # sampled at N_SUB interior points of the dense output
-        _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, hs, loc, gravity, K, F, ws)
+        if low_order:
+            dopri5.prepare_dense_nested(y, K, hs, F)
+        else:
+            _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, hs, loc, gravity, K, F, ws)
         have_dense = True
-        guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0, held, ws)
+        if not g0_ok:
+            guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0, held, ws)
+        g0_ok = False
         first = -1
         x_first = 2.0
         x_lo = 0.0
         for sub in range(1, N_SUB + 1):
             x_hi = sub / N_SUB
             if sub == N_SUB:
-                guards(P, ends, anchor, nstate, tstate, t + hs, y_new, loc, gravity, g1, held, ws)
+                # the step's last stage left the contact forces at its end in ws[18]
+                guards_from(P, ends, anchor, nstate, tstate, y_new, ws[18], g1, held)
             else:
                 dop853.dense(y, F, x_hi, ym)
                 guards(P, ends, anchor, nstate, tstate, t + x_hi * hs, ym, loc, gravity, g1, held, ws)
@@ -596,13 +632,19 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                                           t + hs, ws)
         t = t + hs
         y[:] = y_new
-        K[0, :] = K[dop853.FSAL, :]
-        _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
+        K[0, :] = K[fs, :]
+        lam[:] = ws[18]
+        _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, True)
+        g0_ok = True  # (g0 now holds the guards at the step's end)
         for k in range(n):
             if held[k] and lam[3 * k + 2] > 0.0:
                 held[k] = False  # the contact pushes again: its force is watched again
-        fac = 0.9 * err ** -0.125 if err > 0 else 10.0
-        h = hs * min(10.0, max(0.2, fac))
+                g0_ok = False
+        if low_order:
+            h = h_wanted  # the cut was the breakpoint's, not the accuracy's
+        else:
+            fac = 0.9 * err ** -0.125 if err > 0 else 10.0
+            h = hs * min(10.0, max(0.2, fac))
     if status == STATUS_COMPLETED and t >= t_end:
         for k in range(n):
             if nstate[k] != FLAT or tstate[k] != 0:
