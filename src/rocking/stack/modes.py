@@ -300,6 +300,9 @@ def select_mode(level, P, ends, anchor, geo, z, zd, ah, av, gravity, rhs_extra,
     A, beta, C, X, Xd, th, thd = new_frame(n)
     M = np.zeros((nz, nz))
     f = np.zeros(nz)
+    # scratch of the solves, made once for all the candidates tried
+    frozen, free, row_of = np.zeros(nz, dtype=np.bool_), np.empty(nz, dtype=np.int64), np.empty(nz, dtype=np.int64)
+    k_red, b_red = np.empty((nz, nz)), np.empty(nz)
     # the branches each interface may take
     allowed = np.zeros((n, N_CANDIDATES), dtype=np.bool_)
     for k in range(n):
@@ -372,7 +375,7 @@ def select_mode(level, P, ends, anchor, geo, z, zd, ah, av, gravity, rhs_extra,
                     c = counter[k]
                     nstate[k] = _CANDIDATES[c, 0]
                     tstate[k] = _CANDIDATES[c, 2]
-                if solve_mode(M, f, P, nstate, tstate, x_out, lam_out):
+                if solve_mode_in(M, f, P, nstate, tstate, x_out, lam_out, frozen, free, row_of, k_red, b_red):
                     good = True
                     for k in range(n):
                         c = counter[k]
