@@ -389,6 +389,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
     # g0 holds the guards at (t, y) after a step accepted without an event (its end guards):
     # the next step need not evaluate them again
     g0_ok = False
+    k0_ok = True  # K[0] holds the right-hand side at (t, y)
     while status == STATUS_COMPLETED and t < t_end:
         # rest after the motion: nothing can move any more
         if t >= t_settle:
@@ -437,7 +438,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 y[:nz] = zv
                 y[nz:2 * nz] = zdv
                 band_ok = False
-            _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0], ws)
+            k0_ok = False  # K[0] is made when a step needs it (a rest skips it)
         if ib < nb:
             t_lim = min(t_lim, breakpoints[ib])
         if t_settle > t and t_settle < t_lim:
@@ -448,6 +449,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
         if hs <= 1e-15 * max(1.0, t):
             t = t_lim
             g0_ok = False
+            k0_ok = False
             continue
         if _all_stuck(nstate, tstate) and loc[0] <= LOCAL_LINEAR and loc[LOCAL_SIZE] <= LOCAL_LINEAR:
             # Everything flat and stuck, the floor motion linear in time on this piece (a record
@@ -486,9 +488,12 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 if n_out < cap:
                     _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, n_out, ws)
                     n_out += 1
-            _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0], ws)
+            k0_ok = False  # K[0] is made when a step needs it (a rest skips it)
             continue
         band_ok = False
+        if not k0_ok:
+            _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0], ws)
+            k0_ok = True
         if low_order:
             err = _step5(P, ends, anchor, nstate, tstate, t, y, hs, loc, gravity, K, y_new, rtol, atol, n_ctrl, ws)
             exponent = -0.2
@@ -618,6 +623,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 repeats = 0
                 t_last_event = t
             _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0], ws)
+            k0_ok = True
             _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
             if n_out < cap:
                 _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, n_out, ws)
