@@ -73,11 +73,11 @@ MODULES: dict[str, list[str]] = {
         "test_independent_solver.py", "test_single_block_rocking.py", "test_statue_on_pedestal.py", "test_sliding_and_slide_rock.py",
     ],
     "models/bodies.py": [
-        "test_input_errors.py", "test_config.py", "test_single_block_rocking.py", "test_statue_on_pedestal.py",
+        "test_mutants.py", "test_input_errors.py", "test_config.py", "test_single_block_rocking.py", "test_statue_on_pedestal.py",
         "test_sliding_and_slide_rock.py",
     ],
     "excitation/harmonic.py": [
-        "test_config.py", "test_single_block_rocking.py", "test_fast_paths.py", "test_integrator_crosscheck.py",
+        "test_mutants.py", "test_config.py", "test_single_block_rocking.py", "test_fast_paths.py", "test_integrator_crosscheck.py",
     ],
     "excitation/record.py": ["test_records.py", "test_config.py", "test_single_block_rocking.py"],
     "solver/compiled.py": [
@@ -86,10 +86,10 @@ MODULES: dict[str, list[str]] = {
     ],
     "solver/crosscheck.py": ["test_integrator_crosscheck.py"],
     "io/records.py": ["test_records.py", "test_fuzz_inputs.py", "test_config.py"],
-    "models/regimes.py": ["test_single_block_rocking.py", "test_statue_on_pedestal.py", "test_run_until_rest.py"],
+    "models/regimes.py": ["test_mutants.py", "test_single_block_rocking.py", "test_statue_on_pedestal.py", "test_run_until_rest.py"],
     "excitation/base.py": ["test_floor_signals.py", "test_single_block_rocking.py", "test_records.py"],
-    "excitation/_checks.py": ["test_input_errors.py", "test_config.py", "test_fuzz_inputs.py"],
-    "solver/signals.py": ["test_interrupts.py"],
+    "excitation/_checks.py": ["test_mutants.py", "test_input_errors.py", "test_config.py", "test_fuzz_inputs.py"],
+    "solver/signals.py": ["test_mutants.py", "test_interrupts.py"],
     "solver/warmup.py": ["test_install.py", "test_cli.py"],
     "solver/__init__.py": ["test_install.py", "test_single_block_rocking.py"],
 }

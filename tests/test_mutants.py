@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
+import sys
 
 import numpy as np
 import pytest
@@ -484,3 +486,247 @@ def test_a_friction_demand_that_exceeds_mus_for_a_fraction_of_a_step_starts_the_
     slip = slips[0]
     assert (slip.before, slip.after) == (Regime.ROCK, Regime.SLIDE_ROCK)
     assert t_peak - 1e-3 < slip.time <= t_peak + 1e-5
+
+
+# ------------------------------------------------------------------------------------------------
+# models/bodies.py: the validation and the value contracts of Statue, Pedestal and System
+# ------------------------------------------------------------------------------------------------
+
+_BODIES = {
+    "statue": (rk.Statue, {"width": 0.3, "height": 1.2, "mass": 100.0}, "width"),
+    "pedestal": (rk.Pedestal, {"mass": 50.0, "friction": rk.Friction(static=0.3)}, "mass"),
+    "system": (rk.System, {"statue": rk.Statue(width=0.3, height=1.2, mass=100.0)}, "statue"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(_BODIES))
+def test_bodies_are_frozen_hashable_keyword_only_slotted_values(name):
+    """bodies.py:20/93/123 frozen, kw_only or slots=True → False, for Statue, Pedestal and
+    System. A body is a value: one statue may stand in several systems of a study and serve as a
+    key (frozen, hence hashable: eq without frozen sets __hash__ to None); width and height, or
+    a pedestal's mass and friction, are too easily swapped by position (keyword-only); it carries
+    no attribute besides its fields (slots)."""
+    cls, kwargs, field = _BODIES[name]
+    body = cls(**kwargs)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        setattr(body, field, getattr(body, field))
+    assert hash(body) == hash(cls(**kwargs)) and {body, cls(**kwargs)} == {body}
+    with pytest.raises(TypeError):
+        cls(*kwargs.values())
+    assert not hasattr(body, "__dict__")
+
+
+@pytest.mark.parametrize("field", ["width", "height", "mass"])
+@pytest.mark.parametrize("value", [0.0, -0.5, math.nan, math.inf, "1.0", None], ids=repr)
+def test_a_statue_refuses_a_size_or_mass_that_is_not_a_positive_finite_number(field, value):
+    """bodies.py:16, the check of B, H and m: `value < 0` (a zero size or mass accepted),
+    `not isinstance(..) and not isfinite(..)` (a text or None fails with a TypeError of
+    math.isfinite, naming nothing), `not isfinite(..) and value <= 0` (NaN and +inf accepted)."""
+    kwargs = {"width": 0.3, "height": 1.2, "mass": 100.0, field: value}
+    message = f"statue.{field} must be a positive finite number, got {value!r}"
+    with pytest.raises(ValueError, match=re.escape(message)):
+        rk.Statue(**kwargs)
+
+
+@pytest.mark.parametrize("value", [-0.1, 1.5, math.nan, "0.5"], ids=repr)
+def test_a_statue_refuses_a_restitution_outside_zero_to_one(value):
+    """bodies.py:49: `and` for the first `or` (1.5 accepted; a text fails with a TypeError of the
+    comparison) and the upper bound 2.0 for 1.0 (1.5 accepted)."""
+    with pytest.raises(ValueError, match=re.escape(f"statue.restitution must lie in [0, 1], got {value!r}")):
+        rk.Statue(width=0.3, height=1.2, mass=100.0, restitution=value)
+
+
+@pytest.mark.parametrize("value", [0.0, 1.0])
+def test_a_statue_takes_a_plastic_or_a_perfectly_elastic_restitution(value):
+    """bodies.py:49 `0.0 < r` and `r < 1.0`: both ends of [0, 1] are allowed (a plastic impact,
+    r = 0, stops the statue dead; r = 1 loses no energy) and used as given, not Housner's value."""
+    statue = rk.Statue(width=0.3, height=1.2, mass=100.0, restitution=value)
+    assert statue.effective_restitution == value
+    assert statue.housner_restitution == pytest.approx(1.0 - 1.5 * 0.15**2 / (0.15**2 + 0.6**2), rel=1e-14)
+
+
+@pytest.mark.parametrize("value", [-1.0, math.nan, math.inf, "50"], ids=repr)
+def test_a_pedestal_refuses_a_mass_that_is_not_a_finite_number_at_least_zero(value):
+    """bodies.py:114: `not isinstance(..) and not isfinite(..)` (a text fails with a TypeError of
+    math.isfinite) and `not isfinite(..) and m < 0` (NaN and +inf accepted). A massless
+    pedestal (m1 = 0, a single block that slides and rocks) stays allowed."""
+    friction = rk.Friction(static=0.3)
+    with pytest.raises(ValueError, match=re.escape(f"pedestal.mass must be a finite number ≥ 0, got {value!r}")):
+        rk.Pedestal(mass=value, friction=friction)
+    assert rk.Pedestal(mass=0.0, friction=friction).mass == 0.0
+
+
+@pytest.mark.parametrize("field", ["width", "height"])
+@pytest.mark.parametrize("value", [0.0, -0.5, math.nan, "0.5"], ids=repr)
+def test_a_pedestal_refuses_a_width_or_height_that_is_not_a_positive_finite_number(field, value):
+    """bodies.py:118 `for name in []`: the optional sizes of the pedestal (its drawing and the
+    uplift check) were not checked at all. Not given (None) they are allowed."""
+    friction = rk.Friction(static=0.3)
+    message = f"pedestal.{field} must be a positive finite number, got {value!r}"
+    with pytest.raises(ValueError, match=re.escape(message)):
+        rk.Pedestal(mass=50.0, friction=friction, **{field: value})
+    assert getattr(rk.Pedestal(mass=50.0, friction=friction, **{field: None}), field) is None
+
+
+# ------------------------------------------------------------------------------------------------
+# excitation/harmonic.py
+# ------------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("form", ["cos", "sin"])
+def test_harmonic_follows_its_closed_form_from_start_to_end(form):
+    """a_g(t) = A·cos 2πft ("cos") or A·sin 2πft ("sin") on [0, cycles/f], both ends included
+    (the cos form is A at t = 0 and at its end), and 0 outside. Kills harmonic.py:73
+    (`ω t − φ`), :64 (`−0.5/π`, `+0.5·π`, `−1.5·π` for the sin form's phase −π/2), :72
+    (`t > 0`, `t < duration`) and :73 (`1.0` for 0 outside the motion)."""
+    amplitude, frequency, cycles = 2.5, 1.25, 3
+    motion = rk.Harmonic(amplitude=amplitude, frequency=frequency, cycles=cycles, form=form)
+    assert motion.duration == pytest.approx(cycles / frequency, rel=1e-15)
+    t = np.linspace(0.0, motion.duration, 241)
+    wave = np.cos if form == "cos" else np.sin
+    expected = amplitude * wave(2.0 * math.pi * frequency * t)
+    np.testing.assert_allclose(motion.acceleration(t), expected, rtol=0.0, atol=1e-12 * amplitude)
+    if form == "cos":
+        assert float(motion.acceleration(0.0)) == amplitude
+        assert float(motion.acceleration(motion.duration)) == pytest.approx(amplitude, rel=1e-12)
+    outside = np.array([-0.5, np.nextafter(0.0, -1.0), np.nextafter(motion.duration, math.inf), motion.duration + 0.5])
+    assert np.array_equal(motion.acceleration(outside), np.zeros(4))
+
+
+@pytest.mark.parametrize("value", [math.nan, math.inf, "2.0", None], ids=repr)
+def test_harmonic_refuses_an_amplitude_that_is_not_a_finite_number(value):
+    """Found by the mutants of harmonic.py: a text or None amplitude raised a TypeError of
+    math.isfinite that named neither the field nor the value; it now gets the same one-line
+    error as every pulse."""
+    with pytest.raises(ValueError, match=re.escape(f"amplitude must be a finite number, got {value!r}")):
+        rk.Harmonic(amplitude=value, frequency=1.0)
+
+
+def test_harmonic_lasts_one_cycle_unless_told():
+    """harmonic.py:41 `cycles = 2.0` as the default: without ``cycles`` the motion is one cycle."""
+    motion = rk.Harmonic(amplitude=1.0, frequency=2.0)
+    assert motion.cycles == 1.0
+    assert motion.duration == 0.5
+
+
+def test_harmonic_is_frozen_and_keyword_only():
+    """harmonic.py:14 frozen or kw_only=True → False. A motion may be reused by many runs
+    (frozen), and amplitude and frequency are easily swapped by position (keyword-only)."""
+    motion = rk.Harmonic(amplitude=2.0, frequency=1.0)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        motion.amplitude = 3.0
+    with pytest.raises(TypeError):
+        rk.Harmonic(2.0, 1.0)
+
+
+# ------------------------------------------------------------------------------------------------
+# models/regimes.py: the names of the codes the compiled solver writes
+# ------------------------------------------------------------------------------------------------
+
+
+def test_regime_of_names_the_motion_pattern_of_the_slip_and_pivot_signs():
+    """Regime.of(σ, s): REST when nothing moves, ROCK when the statue rocks on a held body (either
+    pivot), SLIDE when the body on the floor slides (either way) and the statue does not rock,
+    SLIDE_ROCK for both, as the compiled solver encodes them (compiled._regime). Kills every
+    mutant of regimes.py:21 (`−` for `+`, `==` for `!=`, `not`, `s != 1`, `sig != 1`, 2 or 3
+    for 1 or 2, `else 1`) and regimes.py:16 (`SLIDE = 3`, which leaves no member for code 2)."""
+    from rocking.models.regimes import Regime
+    from rocking.solver.compiled import _regime
+
+    expected = {(0, 0): Regime.REST, (0, 1): Regime.ROCK, (0, -1): Regime.ROCK,
+                (1, 0): Regime.SLIDE, (-1, 0): Regime.SLIDE}
+    expected.update({(sig, s): Regime.SLIDE_ROCK for sig in (1, -1) for s in (1, -1)})
+    for (sig, s), regime in expected.items():
+        assert Regime.of(sig, s) is regime, (sig, s)
+        assert Regime(_regime(sig, s)) is regime, (sig, s)
+
+
+def test_event_kinds_are_the_codes_the_compiled_transitions_write():
+    """Each EventKind has the code models/transitions.py writes for that event, and a block
+    sliding on the floor reports its slip and its stop by name. Kills regimes.py:28 (`SLIP = 3`:
+    STOP becomes an alias and code 2 has no name) and regimes.py:34 (`BREAKPOINT = 9`)."""
+    from rocking.models import transitions as tr
+    from rocking.models.regimes import EventKind, Regime
+
+    codes = {"IMPACT": tr.EV_IMPACT, "SLIP": tr.EV_SLIP, "STOP": tr.EV_STOP, "UPLIFT": tr.EV_UPLIFT,
+             "EXCEED_ALPHA": tr.EV_EXCEED, "FALL": tr.EV_FALL, "SETTLE": tr.EV_SETTLE, "BREAKPOINT": tr.EV_BREAKPOINT}
+    assert {kind.name: int(kind) for kind in EventKind} == codes
+
+    # a square block (rocks only past g) with μs = 0.2 under a 3 m/s² sine: it slides, never rocks
+    block = rk.Statue(width=1.0, height=1.0, mass=10.0, friction=rk.Friction(static=0.2, kinetic=0.15))
+    r = rk.simulate(rk.System(statue=block), rk.Harmonic(amplitude=3.0, frequency=2.0, cycles=1, form="sin"))
+    slip, stop = r.events[0], r.events[1]
+    assert (slip.kind, slip.before, slip.after) == (EventKind.SLIP, Regime.REST, Regime.SLIDE)
+    assert (stop.kind, stop.before, stop.after) == (EventKind.STOP, Regime.SLIDE, Regime.REST)
+    assert math.sin(2.0 * math.pi * 2.0 * slip.time) == pytest.approx(0.2 * rk.g / 3.0, rel=1e-9)
+    assert set(np.unique(r.regime)) == {Regime.REST, Regime.SLIDE}
+
+
+# ------------------------------------------------------------------------------------------------
+# excitation/_checks.py: the checks every floor motion shares
+# ------------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("value", [0, -1.0, math.nan, math.inf, "1.5", None], ids=repr)
+def test_a_motion_refuses_a_frequency_or_width_that_is_not_a_positive_finite_number(value):
+    """_checks.py:7 (`positive`): `value < 0` (0 Hz accepted), `and` for any of the first two
+    `or` (a text fails with a TypeError of math.isfinite, naming nothing), `not isfinite(..) and
+    value <= 0` (NaN and +inf accepted)."""
+    with pytest.raises(ValueError, match=re.escape(f"frequency must be a positive finite number, got {value!r}")):
+        rk.Harmonic(amplitude=1.0, frequency=value)
+    with pytest.raises(ValueError, match=re.escape(f"width must be a positive finite number, got {value!r}")):
+        rk.RectanglePulse(amplitude=1.0, width=value)
+
+
+@pytest.mark.parametrize("value", [math.nan, math.inf, -math.inf, "2.0", None], ids=repr)
+def test_a_pulse_refuses_an_amplitude_or_rate_that_is_not_a_finite_number(value):
+    """_checks.py:12 (`finite`): `and` for either `or` (a text fails with a TypeError of
+    math.isfinite instead of naming the field). Zero and negative values stay allowed."""
+    with pytest.raises(ValueError, match=re.escape(f"amplitude must be a finite number, got {value!r}")):
+        rk.SinePulse(amplitude=value, frequency=1.0)
+    with pytest.raises(ValueError, match=re.escape(f"rate must be a finite number, got {value!r}")):
+        rk.Ramp(rate=value, end=1.0)
+    assert rk.SinePulse(amplitude=-2.0, frequency=1.0).amplitude == -2.0
+
+
+# ------------------------------------------------------------------------------------------------
+# solver/signals.py: SIGTERM in a study's worker process (SIGINT ignored, SIGTERM default)
+# ------------------------------------------------------------------------------------------------
+
+_WORKER_GETS_SIGTERM = """\
+import os, signal, time
+signal.signal(signal.SIGINT, signal.SIG_IGN)    # as analyses/executors.py sets up a worker
+signal.signal(signal.SIGTERM, signal.SIG_DFL)
+from rocking.solver.signals import deferred_signals
+with deferred_signals() as flag:
+    os.kill(os.getpid(), signal.SIGTERM)
+    for _ in range(1000):
+        if flag[0]:
+            break
+        time.sleep(0.001)
+    print("deferred", int(flag[0]), signal.getsignal(signal.SIGINT) == signal.SIG_IGN, flush=True)
+print("still alive", flush=True)
+"""
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
+def test_sigterm_in_a_worker_that_ignores_ctrl_c_is_deferred_then_ends_the_process():
+    """A study's worker ignores SIGINT and keeps SIGTERM's default action. A SIGTERM while it
+    simulates is recorded (the solver returns early), SIGINT stays ignored, and when the block
+    ends the process dies of that SIGTERM, as it would have without the deferral. Kills
+    signals.py:51 (`break` for `continue`: after the ignored SIGINT, SIGTERM is not deferred and
+    kills the process inside the compiled loop), :62 (`not callable`: SIG_DFL is called and
+    raises TypeError) and :65 (`!=` for `==`, or `not ==`: the SIGTERM is swallowed and the
+    worker lives on)."""
+    import os
+    import signal
+    import subprocess
+    from pathlib import Path
+
+    src = str(Path(rk.__file__).resolve().parents[1])  # the rocking under test (the mutated copy in `try`)
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [src, os.environ.get("PYTHONPATH")]))}
+    proc = subprocess.run([sys.executable, "-c", _WORKER_GETS_SIGTERM], env=env, capture_output=True, text=True,
+                          timeout=120)
+    assert proc.stdout == f"deferred {int(signal.SIGTERM)} True\n", (proc.stdout, proc.stderr)
+    assert proc.returncode == -signal.SIGTERM, (proc.returncode, proc.stderr)
+    assert "Traceback" not in proc.stderr, proc.stderr
