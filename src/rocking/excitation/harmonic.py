@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .base import KIND_HARMONIC, N_PARAMS, AbstractMotion, Signal
-from ._checks import positive
+from ._checks import finite, positive
 
 
 @dataclass(frozen=True, kw_only=True, slots=True)
@@ -45,8 +45,7 @@ class Harmonic(AbstractMotion):
     def __post_init__(self):
         positive("frequency", self.frequency)
         positive("cycles", self.cycles)
-        if not math.isfinite(self.amplitude):
-            raise ValueError(f"amplitude must be finite, got {self.amplitude!r}")
+        finite("amplitude", self.amplitude)
         if self.form not in ("cos", "sin"):
             raise ValueError(f"form must be 'cos' or 'sin', got {self.form!r}")
         if self.angular_frequency is not None:
