@@ -34,7 +34,7 @@ from .kinematics import (
     forward,
     new_frame,
     kinetic_energy,
-    mass_and_forces,
+    mass_and_forces_on,
     relative_pose,
 )
 from .modes import (
@@ -47,6 +47,7 @@ from .modes import (
     VELOCITY,
     corner_x,
     flat_forces,
+    frozen_set,
     reanchor,
     refresh_ends,
     select_mode,
@@ -136,7 +137,13 @@ def evaluate_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, dy, lam, ws
     zd = y[nz:2 * nz]
     A, beta, C, X, Xd, th, thd, M, f, zdd, frozen, free, row_of, Kr, br = ws[:15]
     forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, th, thd)
-    mass_and_forces(P, A, beta, C, ah, av, gravity, M, f)
+    frozen_set(nstate, tstate, P, frozen)
+    n_free = 0
+    for i in range(nz):
+        if not frozen[i]:
+            free[n_free] = i
+            n_free += 1
+    mass_and_forces_on(P, A, beta, C, ah, av, gravity, M, f, n_free, free)
     ok = solve_mode_in(M, f, P, nstate, tstate, zdd, lam, frozen, free, row_of, Kr, br)
     for i in range(nz):
         dy[i] = zd[i]

@@ -223,15 +223,23 @@ def new_frame(n):
             np.zeros(n), np.zeros(n))
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def mass_and_forces(P, A, beta, C, ah, av, gravity, M, f):
     """M = Σ m AᵀA + J CᵀC and f = Σ Aᵀ(F − m β), F = (−m a_h, −m (g + a_v)) (fills M, f)."""
+    mass_and_forces_on(P, A, beta, C, ah, av, gravity, M, f, 3 * P.shape[0], np.arange(3 * P.shape[0]))
+
+
+@njit(cache=True, _nrt=False)
+def mass_and_forces_on(P, A, beta, C, ah, av, gravity, M, f, n_cols, cols):
+    """:func:`mass_and_forces` on the columns cols[:n_cols] of M only (the others are left as
+    they were): a mode's equations read only the columns of its free coordinates, one to three
+    of 3N in most modes."""
     n = P.shape[0]
     nz = 3 * n
     for i in range(nz):
         f[i] = 0.0
-        for j in range(nz):
-            M[i, j] = 0.0
+        for c in range(n_cols):
+            M[i, cols[c]] = 0.0
     for k in range(n):
         m = P[k, P_MASS]
         J = P[k, P_INERTIA]
@@ -242,7 +250,8 @@ def mass_and_forces(P, A, beta, C, ah, av, gravity, M, f):
             f[i] += a0 * fx + a1 * fy
             if a0 == 0.0 and a1 == 0.0 and ci == 0.0:
                 continue
-            for j in range(nz):
+            for c in range(n_cols):
+                j = cols[c]
                 M[i, j] += m * (a0 * A[k, 0, j] + a1 * A[k, 1, j]) + J * ci * C[k, j]
 
 
