@@ -334,6 +334,7 @@ def select_mode(level, P, ends, anchor, geo, z, zd, ah, av, gravity, rhs_extra,
     zd0 = zd.copy()
     ends0 = ends.copy()
     anchor0 = anchor.copy()
+    built = -1  # which ends (as a bit set of re-anchored interfaces) M and f were built for
     for attempt in range(2):
         counter = np.zeros(n, dtype=np.int64)
         done = False
@@ -353,17 +354,24 @@ def select_mode(level, P, ends, anchor, geo, z, zd, ah, av, gravity, rhs_extra,
                     if veto_kind == 2 and nst >= ROCK and _CANDIDATES[c, 2] == 0:
                         valid = False
             if valid:
-                # the pose with the anchors this candidate needs
-                z[:] = z0
-                zd[:] = zd0
-                ends[:, :, :] = ends0
-                anchor[:] = anchor0
+                # the pose with the anchors this candidate needs (M and f depend on nothing
+                # else, so candidates on the same anchors share them)
+                flips = 0
                 for k in range(n):
                     if _CANDIDATES[counter[k], 1] == 1:
-                        e = 1 - anchor[k]
-                        reanchor(P, ends, anchor, k, z, zd, e, ends[k, e, 0], ends[k, e, 1])
-                forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, th, thd)
-                mass_and_forces(P, A, beta, C, ah, av, gravity, M, f)
+                        flips |= 1 << k
+                if flips != built:
+                    z[:] = z0
+                    zd[:] = zd0
+                    ends[:, :, :] = ends0
+                    anchor[:] = anchor0
+                    for k in range(n):
+                        if _CANDIDATES[counter[k], 1] == 1:
+                            e = 1 - anchor[k]
+                            reanchor(P, ends, anchor, k, z, zd, e, ends[k, e, 0], ends[k, e, 1])
+                    forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, th, thd)
+                    mass_and_forces(P, A, beta, C, ah, av, gravity, M, f)
+                    built = flips
                 if level == VELOCITY:
                     # impulse problem: M ż⁺ = M ż⁻ + extra + Λ
                     for i in range(nz):
