@@ -17,7 +17,7 @@ from .._numba_cache import refresh
 # Everything the compiled engine is built from (numba's cache checks only each function's own file).
 _CORE = [
     "stack/kinematics.py", "stack/modes.py", "stack/engine.py", "excitation/signal.py", "excitation/base.py",
-    "integrators/dop853.py", "solver/compiled.py",
+    "integrators/dop853.py", "integrators/dopri5.py", "solver/compiled.py",
 ]
 refresh(_CORE, "stack/__pycache__/core.sha256")
 
