@@ -730,3 +730,112 @@ def test_sigterm_in_a_worker_that_ignores_ctrl_c_is_deferred_then_ends_the_proce
     assert proc.stdout == f"deferred {int(signal.SIGTERM)} True\n", (proc.stdout, proc.stderr)
     assert proc.returncode == -signal.SIGTERM, (proc.returncode, proc.stderr)
     assert "Traceback" not in proc.stderr, proc.stderr
+
+
+# ------------------------------------------------------------------------------------------------
+# excitation/record.py: GroundMotion's trimming, repr, metadata, identity and vertical record
+# ------------------------------------------------------------------------------------------------
+
+
+def _record(**kw):
+    """A record that starts at 0.5 s, not 0 (so time[0] and time[1] are told apart): horizontal
+    2, −4, 1 m/s² and vertical 1, 3, 0 m/s² at 0.5, 1.0, 1.5 s."""
+    from rocking.excitation.record import GroundMotion
+
+    kw = {"name": "s", "vertical": [1.0, 3.0, 0.0], **kw}
+    return GroundMotion.from_arrays([0.5, 1.0, 1.5], [2.0, -4.0, 1.0], **kw)
+
+
+def test_a_record_trimmed_at_its_last_sample_is_the_record_itself():
+    """Cutting a record where it ends cuts nothing: the record comes back as it is, and its
+    metadata does not claim a trim. Kills record.py:303 `t_end > time[-1]` (a new motion with
+    `trimmed_at` in its metadata)."""
+    gm = _record()
+    assert gm.trimmed(gm.duration) is gm
+    assert "trimmed_at" not in gm.trimmed(1.5).meta
+
+
+def test_a_record_can_be_trimmed_inside_its_first_interval():
+    """A cut between the first two samples keeps the first sample and adds one interpolated at
+    the cut (the history up to it unchanged); a cut on the second sample keeps two samples.
+    Kills record.py:298 `t_end <= time[1]` (both cuts refused)."""
+    cut = _record().trimmed(0.75)
+    assert cut.time.tolist() == [0.5, 0.75]
+    assert cut.values.tolist() == [2.0, -1.0]  # halfway from 2 to −4
+    assert cut.vertical.tolist() == [1.0, 2.0]  # halfway from 1 to 3
+    assert cut.duration == 0.75 and cut.meta["trimmed_at"] == 0.75
+    on_sample = _record().trimmed(1.0)
+    assert on_sample.time.tolist() == [0.5, 1.0] and on_sample.values.tolist() == [2.0, -4.0]
+
+
+@pytest.mark.parametrize("t_end", [0.5, 0.25, math.nan], ids=repr)
+def test_a_cut_at_or_before_the_first_sample_is_refused_naming_the_first_time(t_end):
+    """The error states the first sample's time (0.5 s here) and the cut asked for. Kills
+    record.py:301 `time[1]` (the message quoted the second sample's time, 1.0)."""
+    message = f"GroundMotion.trimmed: t_end must be finite and > time[0] = 0.5, got {t_end!r}"
+    with pytest.raises(ValueError, match=re.escape(message)):
+        _record().trimmed(t_end)
+
+
+def test_the_repr_of_a_record_says_whether_it_has_a_vertical_component():
+    """Kills record.py:323 `is None` for `is not None`, and `not … is not None` (yes and no
+    swapped)."""
+    assert repr(_record()) == ("GroundMotion(name='s', n=3, dt=0.5 s, duration=1.5 s, pga=4 m/s², "
+                               "vertical=yes)")
+    assert repr(_record(vertical=None)).endswith(", vertical=no)")
+
+
+@pytest.mark.parametrize(
+    ("meta", "kind"),
+    [(5, "int"), ([("station", "TAK", "extra")], "list"), ([1.0], "list")],
+    ids=["a number", "a triple", "a list of numbers"],
+)
+def test_metadata_that_is_neither_a_mapping_nor_pairs_is_refused_naming_the_field(meta, kind):
+    """`dict(meta)` of a number raises TypeError, of a triple ValueError: both become the
+    one-line error naming `GroundMotion.meta` and the type given. Pairs and mappings are taken
+    (as a read-only copy). Kills record.py:116 `isinstance(meta, Mapping)` and `not not
+    isinstance(..)` (a non-mapping is not converted: a raw TypeError or ValueError of `dict`),
+    record.py:119 `TypeError` or `ValueError` no longer caught."""
+    message = f"GroundMotion.meta must be a mapping or (key, value) pairs, got {kind} ("
+    with pytest.raises(ValueError, match=re.escape(message)):
+        _record(meta=meta)
+    assert dict(_record(meta=[("station", "TAK")]).meta) == {"station": "TAK"}
+    given = {"station": "TAK"}
+    gm = _record(meta=given)
+    given["station"] = "other"
+    assert dict(gm.meta) == {"station": "TAK"}
+    with pytest.raises(TypeError):
+        gm.meta["station"] = "other"  # type: ignore[index]
+
+
+def test_ground_motions_compare_and_hash_by_identity():
+    """Two records with the same samples are two motions: `==` is identity, and a motion can be
+    a dict key or a set member, and `motion in motions` works. Kills record.py:49
+    `eq=True` (a hash of the fields fails on the arrays, and `==` compares arrays element-wise:
+    `in` raises)."""
+    a, b = _record(), _record()
+    assert a == a and a != b
+    assert len({a, b}) == 2 and {a: "first", b: "second"}[b] == "second"
+    assert b in [a, b] and hash(a) == hash(a)
+
+
+@pytest.mark.parametrize(("name", "shown"), [("quiet", "'quiet'"), ("", "'the record'")])
+def test_scaling_a_silent_record_to_a_pga_names_the_record(name, shown):
+    """A record that is zero everywhere cannot be scaled to a PGA: the error names it, or says
+    'the record' if it has no name. Kills record.py:275 `name and 'the record'`."""
+    from rocking.excitation.record import GroundMotion
+
+    silent = GroundMotion.from_arrays([0.0, 0.01, 0.02], [0.0, 0.0, 0.0], name=name)
+    message = f"GroundMotion.scaled: cannot scale {shown} to a target PGA because it is identically zero"
+    with pytest.raises(ValueError, match=re.escape(message)):
+        silent.scaled(pga=1.0)
+
+
+def test_the_vertical_record_is_zero_before_its_first_sample_and_after_its_last():
+    """The floor is still before a record starts (here at 0.5 s), vertically as horizontally,
+    and linear between samples. Kills record.py:215 `left=1.0` (1 m/s² upwards before the
+    record)."""
+    gm = _record()
+    t = np.array([0.0, 0.49, 0.5, 0.75, 1.25, 1.5, 1.51, 3.0])
+    assert gm.vertical_acceleration(t).tolist() == [0.0, 0.0, 1.0, 2.0, 1.5, 0.0, 0.0, 0.0]
+    assert gm.acceleration(t).tolist() == [0.0, 0.0, 2.0, -1.0, -1.5, 1.0, 0.0, 0.0]
