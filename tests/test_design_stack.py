@@ -16,6 +16,8 @@ from rocking.viz.plots import TOP_LIMIT_COLOR, _mm_text
 
 G = 9.81
 OPTS = rk.Options(gravity=G)
+# the conservative criterion: a run stops, undetermined, when a block slides to the edge below
+OPTS_EDGE = rk.Options(gravity=G, stop_at_edge=True)
 STATUE = Block(name="statue", width=0.4, height=1.6, mass=200.0)  # tan α = 0.25
 
 
@@ -40,12 +42,12 @@ def test_sweep_over_the_top_friction_equals_single_stack_runs_and_reports_the_sl
     tops = [0.1, 0.2, 0.6]
     base = _stack(0.3)
     base = Stack(blocks=base.blocks, interfaces=(base.interfaces[0], Interface(friction=rk.Friction(static=0.3))))
-    ds = sweep(base, MOTION, {"interfaces[1].friction.static": tops}, options=OPTS, workers=2)
+    ds = sweep(base, MOTION, {"interfaces[1].friction.static": tops}, options=OPTS_EDGE, workers=2)
     assert ds.block_peak_sliding.dims == ("interfaces[1].friction.static", "block")
     assert ds.block.values.tolist() == ["pedestal", "statue"]
     for k, mu in enumerate(tops):
         stack = Stack(blocks=base.blocks, interfaces=(base.interfaces[0], Interface(friction=rk.Friction(static=mu))))
-        single = simulate_stack(stack, MOTION, options=OPTS).summary()
+        single = simulate_stack(stack, MOTION, options=OPTS_EDGE).summary()
         run = ds.isel({"interfaces[1].friction.static": k})
         for key in ("overturned", "overturn_time", "peak_rotation", "peak_sliding", "residual_sliding",
                     "first_rocking_time", "first_sliding_time", "impacts", "energy_balance_error", "status",
@@ -57,7 +59,7 @@ def test_sweep_over_the_top_friction_equals_single_stack_runs_and_reports_the_sl
                 assert _value(run[f"block_{key}"][b]) == block[key], (mu, b, key)
         for f, face in enumerate(single["interfaces"]):
             assert float(run.interface_slip_path[f]) == face["slip_path"]
-    # at μs = 0.1 on top the statue slips on the pedestal (to its edge: the engine stops there);
+    # at μs = 0.1 on top the statue slips on the pedestal (to its edge: the run stops there, as asked);
     # at 0.6 it grips: it never slides on the pedestal, and rocks instead
     low, high = ds.isel({"interfaces[1].friction.static": 0}), ds.isel({"interfaces[1].friction.static": 2})
     assert float(low.block_peak_sliding.sel(block="statue")) > 0.1 and np.isfinite(float(low.first_sliding_time))
@@ -150,12 +152,12 @@ def test_only_the_top_face_saves_the_statue_and_the_report_names_it(top_face_des
 
 def test_sliding_to_the_pedestal_edge_is_not_safe_and_is_named():
     """On a 1.2 m pedestal the slippery top face lets the statue slide 0.4 m to the edge under the
-    slower motion: the engine stops there, and the design counts it as a fall risk."""
+    slower motion: with ``stop_at_edge`` the run stops there, and the design counts it as a fall risk."""
     narrow = rk.System(statue=SYSTEM.statue, pedestal=rk.Pedestal(mass=300.0, friction=SYSTEM.pedestal.friction,
                                                                    width=1.2, height=0.4))
     motions = motion_family("harmonic", [4.0], [0.8, 1.6], cycles=3)
     ds = friction_design(narrow, motions, mu_s=[0.6], mu_s_top=[0.15], mu_k_top_ratio=0.8, free_time=5.0,
-                         options=OPTS, workers=1)
+                         options=OPTS_EDGE, workers=1)
     slow = "harmonic A=4 m/s² f=0.8 Hz"
     assert bool(ds.slid_off.sel(motion=slow).item()) and not bool(ds.falls.sel(motion=slow).item())
     assert not bool(ds.safe.item()) and int(ds.slid_off_count.item()) == 1
@@ -460,11 +462,11 @@ def test_fragility_of_a_stack_counts_slides_to_the_edge_as_falls():
 
     rec = read_record("LomaPrieta1989_Corralitos_000")
     stacks = {"slippery top": _stack(0.1, floor_mu=0.6), "gripping top": _stack(0.6, floor_mu=0.6)}
-    ds = ida(stacks, {"r": rec}, [4.0, 10.0], free_time=10.0, options=OPTS, workers=1)
+    ds = ida(stacks, {"r": rec}, [4.0, 10.0], free_time=10.0, options=OPTS_EDGE, workers=1)
     for label, stack in stacks.items():
         for j, level in enumerate((4.0, 10.0)):
             single = simulate_stack(stack, rec.scaled(level / rec.pga),
-                                    options=rk.Options(gravity=G, free_time_limit=10.0)).summary()
+                                    options=rk.Options(gravity=G, free_time_limit=10.0, stop_at_edge=True)).summary()
             run = ds.sel(system=label, record="r").isel(level=j)
             assert str(run.status.values) == single["status"]
             assert float(run.peak_rotation) == single["peak_rotation"]

@@ -14,6 +14,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 
+import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
 from rocking.report import write_report  # noqa: E402
@@ -46,7 +47,8 @@ def _standing_config() -> dict:
 
 
 def _edge_config() -> dict:
-    """The three blocks under a scaled record: the vase slides to the statue's edge at 5.07 s."""
+    """The three blocks under a scaled record: the vase slides to the statue's edge at 5.07 s, where
+    the run stops (``stop_at_edge``, the conservative criterion)."""
     config = tomllib.loads(THREE.read_text(encoding="utf-8"))
     config["blocks"][0]["width"], config["blocks"][0]["height"], config["blocks"][0]["mass"] = 0.8, 0.5, 300.0
     config["blocks"][0]["name"] = "pedestal"
@@ -55,7 +57,7 @@ def _edge_config() -> dict:
     config["interfaces"][0]["friction"] = {"static": 0.3, "kinetic": 0.25}
     config["interfaces"][1]["friction"] = {"static": 0.5, "kinetic": 0.4}
     config["motion"] = {"kind": "record", "path": "Northridge1994_RinaldiReceivingSta_228", "scale": 0.4}
-    config["simulation"] = {}
+    config["simulation"] = {"stop_at_edge": True}
     return config
 
 
@@ -84,8 +86,9 @@ def _expected_checks(response) -> dict[str, str]:
     for name, b in zip(names, s["blocks"]):
         out[f"{name} stays upright (no overturn)"] = (
             FAIL if b["overturned"] else UNDETERMINED if (fell or undetermined) else PASS)
+    past_edge = s["status"] == "slid_past_edge" or bool(np.any(response.events[:, 2] == 5))  # 5: the edge guard
     out["no block slid to the edge of the one below"] = (
-        FAIL if s["status"] == "slid_past_edge" else UNDETERMINED if undetermined else PASS)
+        FAIL if past_edge else UNDETERMINED if undetermined else PASS)
     for f, interface in zip(s["interfaces"], response.stack.interfaces):
         given = interface.friction
         out[f"friction {f['name']} needs while it sticks ≤ its μs"] = (
@@ -149,6 +152,27 @@ def test_a_block_at_the_edge_fails_its_check_with_a_warning(at_the_edge):
     assert edge.result == FAIL and edge.value.startswith("block 3 (vase) reached the edge of block 2 (statue) at t =")
     assert content.verdict.startswith("Undetermined: block 3 (vase) slid to the edge of block 2 (statue) at t = ")
     assert edge.warning in content.warnings
+    assert stack_verdict_class(response, content.checks) == "stopped"
+
+
+def test_a_block_followed_past_the_edge_fails_the_edge_check():
+    """The same stack and record without ``stop_at_edge``: the vase, flush with the statue's edge,
+    slides past it at 2.98 s and hangs over it; the run goes on to rest. The check of the edge
+    fails and names the block, the edge and the time (from the engine's edge event), with a
+    warning; the verdict class is not "safe"."""
+    from rocking.stack.engine import G_EDGE
+
+    config = _edge_config()
+    config["simulation"] = {}
+    config, response = run_response(config)
+    assert response.status == "completed" and not response.overturned
+    first = response.events[response.events[:, 2] == G_EDGE][0]
+    assert int(first[1]) == 2
+    content = build_stack_content(response, config)
+    edge = {c.name: c for c in content.checks}["no block slid to the edge of the one below"]
+    assert edge.result == FAIL
+    assert edge.value == f"block 3 (vase) went past the edge of block 2 (statue) at t = {first[0]:.2f} s"
+    assert edge.warning in content.warnings and "hung over it" in edge.warning
     assert stack_verdict_class(response, content.checks) == "stopped"
 
 

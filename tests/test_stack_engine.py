@@ -410,14 +410,14 @@ def test_friction_never_creates_energy_in_a_three_block_stack():
 
 @pytest.mark.parametrize("record, status", [
     ("Friuli1976_Tolmezzo_000", "completed"), ("ImperialValley1940_ElCentroArray9_180", "completed"),
-    ("LomaPrieta1989_Corralitos_000", "completed"), ("Kobe1995_Takatori_000", "slid_past_edge"),
+    ("LomaPrieta1989_Corralitos_000", "completed"), ("Kobe1995_Takatori_000", "overturned"),
     ("Northridge1994_RinaldiReceivingSta_228", "overturned")])
 def test_three_block_stack_under_a_full_scale_record_reaches_a_verdict(record, status):
-    """Plinth, statue and off-centre vase under a whole record at full scale: the run reaches rest,
-    a fall, or (Kobe: the vase slides to the statue's edge at 4.44 s) the honest stop of a motion
-    not modelled yet (no endless switching at the statue's rocking threshold: the rest rule for slips; no
-    dead end at a record sample: the mode there is chosen as after an event), the ledger
-    balances, friction and impacts only take energy."""
+    """Plinth, statue and off-centre vase under a whole record at full scale: the run reaches rest
+    or a fall (Kobe: the vase slides past the statue's edge at 4.44 s and back at 5.19 s, then the
+    statue falls at 6.19 s), with no endless switching at the statue's rocking threshold (the rest
+    rule for slips) and no dead end at a record sample (the mode there is chosen as after an
+    event); the ledger balances, friction and impacts only take energy."""
     from rocking.io.records import read_record
 
     stack = Stack(blocks=(Block(width=1.0, height=0.6, mass=800.0), Block(width=0.4, height=1.4, mass=250.0),
@@ -431,20 +431,79 @@ def test_three_block_stack_under_a_full_scale_record_reaches_a_verdict(record, s
     assert np.all(np.diff(r.friction_loss) >= -1e-9 * scale) and np.all(np.diff(r.impact_loss) >= -1e-9 * scale)
 
 
-def test_a_block_sliding_to_the_edge_of_the_one_below_stops_the_run_undetermined():
-    """A squat block (0.4 × 0.2 m) slides on a held plinth (0.6 m wide) under a constant 0.5 g,
-    μ = 0.1: its corner reaches the plinth's edge when ½(A − μg)t² = 0.1 m. What follows (sliding on
-    the plinth's corner, tipping over its edge) is not modelled yet, so the run stops there, exactly,
-    and says undetermined rather than safe."""
-    a, mu = 0.5 * G, 0.1
-    stack = Stack(blocks=(Block(width=0.6, height=0.3, mass=500.0), Block(width=0.4, height=0.2, mass=20.0)),
-                  interfaces=(Interface(), Interface(friction=Friction(static=mu, kinetic=mu))))
-    r = simulate_stack(stack, rocking.RectanglePulse(amplitude=a, width=2.0), duration=2.0, options={"gravity": G})
+SQUAT_ON_PLINTH_MU = 0.1
+
+
+def _squat_on_plinth(mu=SQUAT_ON_PLINTH_MU, offset=0.0):
+    """A squat block (0.4 × 0.2 m, 20 kg) on a held plinth 0.6 m wide, friction μ between them."""
+    return Stack(blocks=(Block(width=0.6, height=0.3, mass=500.0), Block(width=0.4, height=0.2, mass=20.0, offset=offset)),
+                 interfaces=(Interface(), Interface(friction=Friction(static=mu, kinetic=mu))))
+
+
+def test_a_block_sliding_to_the_edge_stops_the_run_undetermined_when_asked():
+    """The squat block slides on its plinth under a constant 0.5 g, μ = 0.1: its corner reaches the
+    plinth's edge when ½(A − μg)t² = 0.1 m. With ``stop_at_edge`` (the conservative criterion) the
+    run stops there, exactly, and says undetermined rather than safe."""
+    a, mu = 0.5 * G, SQUAT_ON_PLINTH_MU
+    stack = _squat_on_plinth()
+    r = simulate_stack(stack, rocking.RectanglePulse(amplitude=a, width=2.0), duration=2.0,
+                       options={"gravity": G, "stop_at_edge": True})
     assert r.status == "slid_past_edge"
     assert abs(r.end_time - math.sqrt(2 * 0.1 / (a - mu * G))) < 1e-9
     assert r.verdict == (f"undetermined: {stack.names[1]} slid to the edge of {stack.names[0]} at t = {r.end_time:.3f} s; "
                          "the model stops there (treat it as falling off)")
     assert abs(r.blocks[1]["residual_sliding"] + 0.1) < 1e-9
+
+
+def test_a_block_slides_past_the_edge_tips_over_it_and_falls_off():
+    """The same block, followed past the edge (the default). Its corner passes the plinth's edge at
+    ½(A − μg)t² = 0.1 m; it then slides flat on the plinth's corner by the same law (the normal
+    force is still its weight), until the resultant of the normal forces, which the friction at
+    its base holds μ·h/2 = 0.01 m behind the centre, reaches that corner: at a slide of
+    b_plinth − μh/2 = 0.29 m it starts to rock about the corner (to 1e-9 s), tips and falls off.
+    The independent Moreau–Jean solver (Δt = 1e-4 s, first order; at 5e-5 s the differences
+    halve) gives the same slide to 1e-7 m and rotation to 1e-6 rad at 0.30–0.48 s (measured
+    8e-9 m and 3e-7 rad); the energy ledger balances."""
+    from rocking.stack.timestepping import moreau_jean
+
+    a, mu, h = 0.5 * G, SQUAT_ON_PLINTH_MU, 0.2
+    stack = _squat_on_plinth()
+    r = simulate_stack(stack, rocking.RectanglePulse(amplitude=a, width=2.0), duration=1.0,
+                       options={"gravity": G, "save_dt": 0.01})
+    edge, rock, fall = r.events[:, :3]
+    assert edge[1:].tolist() == [1, 5] and abs(edge[0] - math.sqrt(2 * 0.1 / (a - mu * G))) < 1e-9
+    assert rock[1:].tolist() == [1, 1] and abs(rock[0] - math.sqrt(2 * (0.3 - mu * h / 2) / (a - mu * G))) < 1e-9
+    before = r.t <= rock[0]
+    slide = r.pose[:, 1, 0] - r.pose[:, 0, 0]
+    np.testing.assert_allclose(slide[before], -0.5 * (a - mu * G) * r.t[before] ** 2, rtol=0, atol=1e-9)
+    assert not np.any(r.rotation[before, 1])
+    assert r.status == "overturned" and r.blocks[1]["overturned"] and r.blocks[1]["overturn_time"] == fall[0]
+    scale = np.max(np.abs(r.input_work)) + np.max(np.abs(r.energy - r.initial_energy))
+    assert np.max(np.abs(r.balance_error())) < 1e-9 * scale
+
+    ts = np.array([0.30, 0.40, 0.44, 0.48])
+    m = moreau_jean(stack, lambda t: a, t_end=0.49, dt=1e-4, gravity=G)
+    slide_mj = np.interp(ts, m.t, m.pose[:, 1, 0] - m.pose[:, 0, 0])
+    rotation_mj = np.interp(ts, m.t, m.pose[:, 1, 2] - m.pose[:, 0, 2])
+    assert np.max(np.abs(slide_mj - np.interp(ts, r.t, slide))) < 1e-7
+    assert np.max(np.abs(rotation_mj - np.interp(ts, r.t, r.rotation[:, 1]))) < 1e-6
+    assert np.interp(0.48, r.t, r.rotation[:, 1]) < -0.07  # it is tipping over the edge
+
+
+def test_a_block_pushed_partly_past_the_edge_stops_there_overhanging():
+    """A push of 0.5 g for 0.35 s with μ = 0.3: the block slides ½(A − μg)w² while pushed, then
+    v²/(2μg) more, 0.2003 m in all: its corner passes the plinth's edge (at 0.1 m), and it stops,
+    overhanging by 0.1 m, at w + v/(μg), short of tipping (which would start at 0.3 − μh/2 =
+    0.27 m). Both to 1e-9, and it ends at rest, upright."""
+    a, mu, w = 0.5 * G, 0.3, 0.35
+    r = simulate_stack(_squat_on_plinth(mu), rocking.RectanglePulse(amplitude=a, width=w), duration=1.5,
+                       options={"gravity": G})
+    v = (a - mu * G) * w
+    travel = 0.5 * (a - mu * G) * w**2 + v**2 / (2 * mu * G)
+    assert r.status == "completed" and not r.overturned
+    assert abs(r.blocks[1]["residual_sliding"] + travel) < 1e-9
+    assert r.events[:, 2].tolist() == [5, 2] and abs(r.events[-1, 0] - (w + v / (mu * G))) < 1e-9
+    assert r.blocks[1]["peak_rotation"] == 0.0
 
 
 def test_a_mode_solve_satisfies_the_equations_of_that_mode():
@@ -489,15 +548,15 @@ def test_a_mode_solve_satisfies_the_equations_of_that_mode():
 
 @pytest.mark.parametrize("offset", [0.1, -0.1], ids=["flush right, slides inwards", "flush left, slides outwards"])
 def test_a_block_flush_with_the_edge_below(offset):
-    """The squat block of the test above, placed with a corner flush with the plinth's edge
-    (offset ±0.1 m: 0.1 + 0.2 = 0.3 m, in floating point a hair past it). Sliding away from that
-    edge it crosses the plinth, 0.2 m, and stops at the far edge at ½(A − μg)t² = 0.2 m; sliding
-    over that edge it is past it at once. (Before, the rounding of o ± b made the flush corner the
+    """The squat block, placed with a corner flush with the plinth's edge (offset ±0.1 m: 0.1 +
+    0.2 = 0.3 m, in floating point a hair past it), run with ``stop_at_edge``. Sliding away from
+    that edge it crosses the plinth, 0.2 m, and stops at the far edge at ½(A − μg)t² = 0.2 m;
+    sliding over that edge it is past it at once. (Before, the rounding of o ± b made the flush corner the
     plinth's: the first case stopped at 2e-9 s, the second slid off unnoticed.)"""
     a, mu = 0.5 * G, 0.1
-    stack = Stack(blocks=(Block(width=0.6, height=0.3, mass=500.0), Block(width=0.4, height=0.2, mass=20.0, offset=offset)),
-                  interfaces=(Interface(), Interface(friction=Friction(static=mu, kinetic=mu))))
-    r = simulate_stack(stack, rocking.RectanglePulse(amplitude=a, width=2.0), duration=2.0, options={"gravity": G})
+    stack = _squat_on_plinth(mu, offset)
+    r = simulate_stack(stack, rocking.RectanglePulse(amplitude=a, width=2.0), duration=2.0,
+                       options={"gravity": G, "stop_at_edge": True})
     assert r.status == "slid_past_edge"
     if offset > 0:
         assert abs(r.end_time - math.sqrt(2 * 0.2 / (a - mu * G))) < 1e-9

@@ -51,6 +51,11 @@ class Options:
         still, until every body is at rest or the statue falls, but for at most this long, s.
         A run cut short by this limit (or by an explicit duration) while anything still moves
         ends with status "still_moving": its verdict is undetermined.
+    stop_at_edge : bool
+        Stacks only: stop a run, with status "slid_past_edge" and an undetermined verdict, when
+        a sliding block's corner reaches the edge of the block below (a conservative criterion:
+        a vase at its shelf's edge counts as lost). Default False: the motion is followed past
+        the edge (sliding on the lower block's corner, tipping over it, falling off).
     max_samples : int
         Largest number of saved samples a run may hold (about 41 bytes each in memory, more in
         output files); a run that would need more is refused before it starts
@@ -67,6 +72,7 @@ class Options:
     save_dt: float | None = None
     max_events: int = 100_000
     free_time_limit: float = 60.0
+    stop_at_edge: bool = False
     max_samples: int = DEFAULT_MAX_SAMPLES
 
     def __post_init__(self):
@@ -87,6 +93,8 @@ class Options:
         v = self.free_time_limit
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0:
             raise ValueError(f"simulation.free_time_limit must be a number ≥ 0 (s), got {v!r}")
+        if not isinstance(self.stop_at_edge, (bool, np.bool_)):
+            raise ValueError(f"simulation.stop_at_edge must be true or false, got {self.stop_at_edge!r}")
 
 
 class SimulationError(RuntimeError):

@@ -981,8 +981,9 @@ def two_face_design(
     first three only; s = 0 the nominal only. Every result is the worst over the levels.
 
     Safety (:func:`choose_design`): a candidate is safe if, under every motion at every level, no
-    block overturns, no block slides to the edge of the one below (status ``slid_past_edge``,
-    where the engine stops: a fall risk, named as such) and every run ends at rest. Then the
+    block overturns (sliding off counts), no block reaches the edge of the one below when
+    ``options.stop_at_edge`` asks the runs to stop there (status ``slid_past_edge``: a fall risk,
+    named as such) and every run ends at rest. Then the
     limits: ``sliding_limit`` and ``residual_limit`` on the pedestal's sliding on the floor (the
     free space it needs), ``top_friction_limit`` (if given) on the friction the top face must
     supply, and ``top_sliding_limit`` on the statue's peak slide on the top face (by default half

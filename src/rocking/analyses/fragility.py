@@ -142,9 +142,9 @@ def ida(
         ``exceed`` (θ/α reached 1, or fell) and ``fall`` (overturned), and ``scale_factor``.
         A run still moving at the free-motion cap (``still_moving``) is not shown to survive:
         it counts as a fall and an exceedance (conservative), and ``undetermined`` counts them.
-        For a stack, any block that overturns is a fall, and so is a block that slides to the
-        edge of the one below (status ``slid_past_edge``: the engine stops there), counted in
-        ``slid_off``.
+        For a stack, any block that overturns (or slides off the one below) is a fall, and so,
+        with ``options.stop_at_edge``, is a block that reaches the edge of the one below (status
+        ``slid_past_edge``: the run stops there), counted in ``slid_off``.
     """
     from .batch import specs_dataset
 

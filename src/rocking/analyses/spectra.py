@@ -152,9 +152,9 @@ _STACK_SOLVER_FAILURES = ("inconsistent", "step_failed", "max_events")
 
 
 def _stack_fails(task: SpectrumTask, motion: Any, counter: list[int], options: Options) -> bool:
-    """:func:`_fails` for a stack: any block overturning is an overturn, and a block sliding to the
-    edge of the one below (``slid_past_edge``, where the engine stops) a failure under every
-    criterion (a fall risk), counted in ``counter[3]``."""
+    """:func:`_fails` for a stack: any block overturning (or sliding off) is an overturn, and, with
+    ``options.stop_at_edge``, a block reaching the edge of the one below (``slid_past_edge``,
+    where the run stops) a failure under every criterion (a fall risk), counted in ``counter[3]``."""
     from ..stack.simulate import simulate_stack
     from .batch import stack_alpha
 
@@ -292,8 +292,9 @@ def overturning_spectrum(
     system : System or Stack
         The statue, alone or on a pedestal; α and p = √(3g/4R) are the statue's. A
         :class:`rocking.stack.Stack` runs on the stack engine, its top block being the statue;
-        any block overturning counts as an overturn, and a block sliding to the edge of the one
-        below (``slid_past_edge``) as a failure under every criterion, counted in ``slid_off_runs``.
+        any block overturning counts as an overturn, and (with ``options.stop_at_edge``) a block
+        reaching the edge of the one below (``slid_past_edge``) as a failure under every
+        criterion, counted in ``slid_off_runs``.
     shapes : str or sequence of str
         ``"sine"``, ``"cosine"``, ``"ricker"``, ``"harmonic"`` (see the module docstring).
     frequency_ratios : sequence of float

@@ -128,6 +128,8 @@ MEANING: dict[str, tuple[str, str]] = {
     "SimulationConfig.max_step": ("s", "largest step"),
     "SimulationConfig.save_dt": ("s", "spacing of the saved series; omitted: the record's step, or 0.01 s"),
     "SimulationConfig.rest_velocity": ("rad/s", "|θ̇⁺| below which an impact leaves the statue at rest"),
+    "SimulationConfig.stop_at_edge": ("", "stacks: stop, undetermined, when a sliding block reaches the edge of the "
+                                          "one below (default: follow it past the edge)"),
     "SimulationConfig.max_events": ("–", "stop with status max_events after this many events"),
     # grids
     "GridConfig.start": ("as the key", "first value"),

@@ -323,6 +323,7 @@ class SimulationConfig(_Section):
     save_dt: Positive | None = _DEFAULTS.save_dt
     rest_velocity: Positive = _DEFAULTS.rest_velocity
     max_events: Annotated[int, Field(ge=1)] = _DEFAULTS.max_events
+    stop_at_edge: bool = _DEFAULTS.stop_at_edge
 
 
 class _RunConfig(_Section):
@@ -369,6 +370,7 @@ class _RunConfig(_Section):
                 save_dt=sim.save_dt,
                 max_events=sim.max_events,
                 free_time_limit=sim.free_time_limit,
+                stop_at_edge=sim.stop_at_edge,
                 max_samples=sim.max_samples,
             )
 

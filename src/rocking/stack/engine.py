@@ -316,9 +316,10 @@ def _housner_couple(P, ends, anchor, k, z, zd, extra):
 
 @njit(cache=True)
 def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravity, rtol, atol, max_step,
-              save_dt, max_events, rest_velocity):
+              save_dt, max_events, rest_velocity, stop_at_edge):
     """Run the stack from rest (or y0) to t_end. Returns (status, t_stop, samples, events,
-    block summary, ends, anchor)."""
+    block summary, ends, anchor). ``stop_at_edge``: stop with STATUS_PAST_EDGE when a sliding
+    block's corner reaches the edge of the block below, instead of following it past the edge."""
     n = P.shape[0]
     nz = 3 * n
     ny = 2 * nz + 2
@@ -490,7 +491,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 status, d_impact, n_ev = _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k_ev,
                                                        first - k_ev * N_GUARD_SLOTS, tol_force, tol_rate,
                                                        rest_velocity, extra, x_sel, lam_sel, events, n_ev, d_impact,
-                                                       summ, held)
+                                                       summ, held, stop_at_edge)
                 _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
                 if n_out < cap:
                     _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, n_out, ws)
@@ -619,7 +620,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             slot = first - k_ev * N_GUARD_SLOTS
             status, d_impact, n_ev = _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k_ev,
                                                    slot, tol_force, tol_rate, rest_velocity, extra, x_sel, lam_sel,
-                                                   events, n_ev, d_impact, summ, held)
+                                                   events, n_ev, d_impact, summ, held, stop_at_edge)
             if n_ev >= max_events and status == STATUS_COMPLETED:
                 status = STATUS_MAX_EVENTS
             if t == t_last_event:
@@ -941,8 +942,20 @@ def _record(events, n_ev, t, k, slot, nst, tst, de):
 
 
 @njit(cache=True)
+def _slide_direction(ends, anchor, k, zd, sigma):
+    """Which way block k slides on the block below (+1, −1; 0 when it does not): the sign of ȧ,
+    or, at the instant a slip starts from rest (ȧ = 0), of its slip state ``sigma``. ȧ is the
+    anchor corner's velocity along the face it touches, the lower face for one of block k's own
+    corners (the block's way) and block k's face for a corner of the block below (the opposite
+    way). It breaks the tie of a corner exactly at the lower block's edge."""
+    v = zd[3 * k]
+    s = (1 if v > 0.0 else -1) if v != 0.0 else sigma
+    return s if ends[k, anchor[k], 0] == END_U else -s
+
+
+@njit(cache=True)
 def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, slot, tol_force, tol_rate,
-                  rest_velocity, extra, x_sel, lam_sel, events, n_ev, d_impact, summ, held):
+                  rest_velocity, extra, x_sel, lam_sel, events, n_ev, d_impact, summ, held, stop_at_edge):
     """Apply the event of guard ``slot`` on interface k at time t (y is the state there).
     Returns (status, impact dissipation so far, number of events)."""
     n = P.shape[0]
@@ -1061,16 +1074,19 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
             else:
                 zd[i] = 0.0  # the slip stops
         elif slot == G_EDGE:
-            # A corner of the sliding block has reached the edge of the block below. Past it the
-            # contact changes corners (refresh_ends), but the motion that follows (sliding on the
-            # lower block's corner, tipping over its edge) is not yet right: a run that gets here
-            # stops with its own status, and its verdict says undetermined.
-            n_ev = _record(events, n_ev, t, k, slot, nstate[k], tstate[k], 0.0)
-            return STATUS_PAST_EDGE, d_impact, n_ev
+            # A corner of the sliding block has reached the edge of the block below (or an
+            # overhanging one has come back over it). Past it that end of the contact is the
+            # other block's corner: the refresh of the ends below re-identifies it, the tie broken
+            # by the way the block slides, and the block goes on sliding on that corner, tips
+            # over it or falls off. On request the run stops here instead (a conservative
+            # criterion: a vase at its shelf's edge counts as lost).
+            if stop_at_edge:
+                n_ev = _record(events, n_ev, t, k, slot, nstate[k], tstate[k], 0.0)
+                return STATUS_PAST_EDGE, d_impact, n_ev
     # an interface that lands flat or stops slipping: which corners are its ends now
     for j in range(1, n):
         if geo[j] == FLAT:
-            refresh_ends(P, ends, anchor, j, z, zd, 0)
+            refresh_ends(P, ends, anchor, j, z, zd, _slide_direction(ends, anchor, j, zd, tstate[j]))
     code = _select_ahead(P, ends, anchor, geo, t, z, zd, loc, gravity, extra, nstate, tstate, veto_k, veto_kind,
                          tol_force, tol_rate, x_sel, lam_sel)
     for j in range(nz):

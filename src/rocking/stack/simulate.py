@@ -202,7 +202,7 @@ def simulate_stack(
                           (sig_v.kind, sig_v.params, sig_v.time, sig_v.values), bp, 0.0, t_end)
     status, t_stop, samples, events, summ, e0, *_ = engine.integrate(
         P, ends, anchor, pieces, bp, t_end, t_settle, y0, options.gravity, options.rtol, options.atol,
-        options.max_step, save_dt, int(options.max_events), options.rest_velocity,
+        options.max_step, save_dt, int(options.max_events), options.rest_velocity, bool(options.stop_at_edge),
     )
     return _response(stack, STATUS_NAMES[status], t_stop, samples, events, summ, e0)
 
