@@ -504,6 +504,12 @@ def test_a_block_pushed_partly_past_the_edge_stops_there_overhanging():
     assert abs(r.blocks[1]["residual_sliding"] + travel) < 1e-9
     assert r.events[:, 2].tolist() == [5, 2] and abs(r.events[-1, 0] - (w + v / (mu * G))) < 1e-9
     assert r.blocks[1]["peak_rotation"] == 0.0
+    # what the user is told: it stayed on, but went past the edge (rocking run, the web page)
+    from rocking.io.stack_output import fall_text
+
+    assert r.blocks[1]["past_edge_time"] == r.events[0, 0] and r.blocks[0]["past_edge_time"] is None
+    assert fall_text(r.summary(), 1) == f"no (past the edge below at {r.events[0, 0]:.3f} s)"
+    assert fall_text(r.summary(), 0) == "no"
 
 
 def test_a_mode_solve_satisfies_the_equations_of_that_mode():

@@ -42,7 +42,8 @@ _CSV_BLOCK_ROWS = 50_000
 def fall_text(summary: dict, k: int) -> str:
     """Whether block k of a stack's summary fell, in words: "at 2.125 s", "no", or, when the run
     stopped at another block's fall (or slide to an edge) first, that its fate is not known: a
-    vase on a statue that falls has not been seen to stay up."""
+    vase on a statue that falls has not been seen to stay up. A block that went past the edge of
+    the one below and stayed on says so: "no (past the edge below at 2.978 s)"."""
     block = summary["blocks"][k]
     if block["overturned"]:
         return f"at {block['overturn_time']:.3f} s"
@@ -52,6 +53,8 @@ def fall_text(summary: dict, k: int) -> str:
         return f"not known (run stopped at {first['name']}'s fall)"
     if summary.get("status") == "slid_past_edge":
         return "not known (run stopped at a slide to an edge)"
+    if block.get("past_edge_time") is not None:
+        return f"no (past the edge below at {block['past_edge_time']:.3f} s)"
     return "no"
 
 

@@ -221,6 +221,7 @@ def _response(stack, status, t_stop, samples, events, summ, e0) -> StackResponse
     interfaces = []
     below = ("floor",) + stack.names[:-1]
     impacts = events[events[:, 2] == engine.EVENT_IMPACT] if len(events) else events
+    edges = events[events[:, 2] == engine.G_EDGE] if len(events) else events
     for k, name in enumerate(stack.names):
         s = summ[k]
         # peaks between the tracking points are caught by the saved samples
@@ -245,6 +246,9 @@ def _response(stack, status, t_stop, samples, events, summ, e0) -> StackResponse
             "first_rocking_time": _opt(s[engine.B_FIRST_ROCK]),
             "first_sliding_time": _opt(s[engine.B_FIRST_SLIDE]),
             "tension_held_time": _opt(s[engine.B_HELD]),
+            # the first time a corner of this block reached the edge of the one below (it went
+            # past it, or the run stopped there with stop_at_edge)
+            "past_edge_time": float(edges[edges[:, 1] == k][0, 0]) if np.any(edges[:, 1] == k) else None,
         })
     return StackResponse(
         stack=stack, status=status, end_time=float(t_stop), t=t, pose=blk[:, :, :3].copy(),
