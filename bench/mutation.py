@@ -85,7 +85,7 @@ MODULES: dict[str, list[str]] = {
         "test_statue_on_pedestal.py", "test_integrator_crosscheck.py", "test_run_until_rest.py", "test_interrupts.py",
     ],
     "solver/crosscheck.py": ["test_integrator_crosscheck.py"],
-    "io/records.py": ["test_records.py", "test_fuzz_inputs.py", "test_config.py"],
+    "io/records.py": ["test_mutants.py", "test_records.py", "test_fuzz_inputs.py", "test_config.py"],
     "models/regimes.py": ["test_mutants.py", "test_single_block_rocking.py", "test_statue_on_pedestal.py", "test_run_until_rest.py"],
     "excitation/base.py": ["test_floor_signals.py", "test_single_block_rocking.py", "test_records.py"],
     "excitation/_checks.py": ["test_mutants.py", "test_input_errors.py", "test_config.py", "test_fuzz_inputs.py"],

@@ -15,6 +15,15 @@ import numpy as np
 import pytest
 
 import rocking as rk
+from rocking.io.records import (
+    RECORD_LIMIT_ENV,
+    RecordError,
+    UnitsConflictError,
+    bundled_records,
+    read_record,
+    record_size_limit,
+    resolve_record,
+)
 
 # ------------------------------------------------------------------------------------------------
 # contact/friction.py
@@ -839,3 +848,332 @@ def test_the_vertical_record_is_zero_before_its_first_sample_and_after_its_last(
     t = np.array([0.0, 0.49, 0.5, 0.75, 1.25, 1.5, 1.51, 3.0])
     assert gm.vertical_acceleration(t).tolist() == [0.0, 0.0, 1.0, 2.0, 1.5, 0.0, 0.0, 0.0]
     assert gm.acceleration(t).tolist() == [0.0, 0.0, 2.0, -1.0, -1.5, 1.0, 0.0, 0.0]
+
+
+# ------------------------------------------------------------------------------------------------
+# io/records.py: record files (PEER AT2, ESM ASCII, two-column), their errors, the size limit
+# ------------------------------------------------------------------------------------------------
+
+_G = 9.80665  # m/s² per g, the conversion the reader documents
+_PEER_TOP = "PEER NGA STRONG MOTION DATABASE RECORD\nTest, 1/1/2000, Nowhere, 0\n"
+_TWO_COLUMN_TOP = "Castaic record\nSource: a test\nTime[s] Accel[g]\n"  # rows start on line 4
+
+
+def _write(tmp_path, name, text):
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def _sparse(tmp_path, size):
+    """A file of `size` bytes that takes no disk space (the size check only stats the file)."""
+    path = tmp_path / "big.AT2"
+    with open(path, "wb") as f:
+        f.truncate(size)
+    return path
+
+
+def test_a_two_column_time_that_does_not_parse_is_reported_at_its_line(tmp_path):
+    """The error for a garbled time names its line (rows on lines 4 and 5). Kills records.py:414
+    `idx - 1` and `idx + 2` (the time's line given as 3 or 6)."""
+    path = _write(tmp_path, "rows.dat", _TWO_COLUMN_TOP + "0.00 0.1\n0.0l 0.2\n")
+    with pytest.raises(RecordError) as info:
+        read_record(path)
+    assert str(info.value) == f"{path}: line 5: cannot parse '0.0l' as a number"
+
+
+def test_an_unsorted_time_is_reported_with_the_time_before_it(tmp_path):
+    """0.015 s after 0.02 s: the error quotes both times and both lines. Kills records.py:427
+    `times[i + 1]` and `times[i - 2]` (the previous time quoted as 0.03 or 0.01)."""
+    rows = "0.00 0.1\n0.01 0.2\n0.02 0.3\n0.015 0.4\n0.03 0.5\n"  # lines 4 to 8
+    path = _write(tmp_path, "unsorted.dat", _TWO_COLUMN_TOP + rows)
+    with pytest.raises(RecordError) as info:
+        read_record(path)
+    assert str(info.value) == (f"{path}: line 7: time 0.015 is not greater than the previous time "
+                               "0.02 (line 6); times must be strictly increasing")
+
+
+@pytest.mark.parametrize(
+    "header",
+    [
+        "Castaic record\nSource: a test\nTime[s] Accel[g]\n",
+        "Castaic record\nSource: a test, units: g\ntime accel\n",
+        "Castaic record\nSource: a test\nTIME SERIES IN UNITS OF G\n",
+    ],
+    ids=["Accel[g]", "units: g", "UNITS OF G"],
+)
+def test_a_two_column_header_states_its_units_in_any_of_three_ways(tmp_path, header):
+    """The units come from the header line that states them; units that contradict them are
+    refused, naming that line (line 3 here, or 2). Kills records.py:438 `j - 1` and `j + 2` (the
+    wrong line named), records.py:435 `_UNITS_OF_RE.search(..) and _UNITS_KEY_RE.search(..)` (a
+    `units: g` line no longer read)."""
+    path = _write(tmp_path, "castaic.dat", header + "0.00 0.1\n0.01 -0.2\n")
+    gm = read_record(path)
+    assert gm.units == "g" and gm.values.tolist() == [0.1 * _G, -0.2 * _G]
+    with pytest.raises(UnitsConflictError) as info:
+        read_record(path, units="m/s2")
+    line = 2 if "units:" in header else 3
+    assert info.value.line == line and str(info.value).startswith(f"{path}: line {line}: ")
+
+
+def test_the_first_statement_of_units_in_a_header_is_the_one_used(tmp_path):
+    """A later 'units' in the header (of the time column) does not replace the acceleration's:
+    PEER reads `UNITS OF G` on line 3, not `UNITS OF SEC` on line 4; two-column reads `Accel[g]`,
+    not `time units: s`. Kills records.py:307 and 439 `break` → `continue` (the last statement
+    wins: 'SEC' and 's' are refused as unknown units)."""
+    peer = _write(tmp_path, "two_units.AT2", _PEER_TOP + "ACCELERATION TIME SERIES IN UNITS OF G\n"
+                  "NPTS= 3, DT= .0100 SEC (TIME IN UNITS OF SEC)\n 0.1 0.2 -0.3\n")
+    gm = read_record(peer)
+    assert gm.meta["header_units"] == "G"
+    np.testing.assert_allclose(gm.values, [0.1 * _G, 0.2 * _G, -0.3 * _G], rtol=1e-15)
+    columns = _write(tmp_path, "two_units.dat", "Time[s] Accel[g]\ntime units: s\n0 0.1\n0.01 0.2\n")
+    assert read_record(columns).meta["header_units"] == "g"
+
+
+def test_a_value_that_overflows_in_si_units_is_named_by_its_position(tmp_path):
+    """1e308 g is finite in the file but not in m/s²: the error counts the values from 1.
+    Kills records.py:574 `bad[0] - 1`, `bad[0] + 2`."""
+    path = _write(tmp_path, "huge.AT2", _PEER_TOP + "ACCELERATION IN UNITS OF G\n"
+                  "NPTS= 3, DT= .01 SEC\n0.1 0.2 1e308\n")
+    with pytest.raises(RecordError) as info:
+        read_record(path)
+    assert str(info.value) == f"{path}: value #3 (1e+308 g) overflows when converted to m/s²"
+
+
+def test_read_record_takes_its_options_by_keyword_only(tmp_path):
+    """`read_record(path, "peer")` is refused: format, units and the override are easily
+    swapped by position. Kills records.py:476 `*` → `/` (positional-only path, the options
+    then positional too)."""
+    path = _write(tmp_path, "ok.AT2", _PEER_TOP + "IN UNITS OF G\nNPTS= 2, DT= .01\n1 2\n")
+    with pytest.raises(TypeError):
+        read_record(path, "peer")
+    assert read_record(path, format="peer").n == 2
+
+
+@pytest.mark.parametrize(
+    ("raw", "limit"), [("2.5", 2_500_000), (" 0.5 ", 500_000), ("1e-6", 1)], ids=repr
+)
+def test_the_record_size_limit_is_read_from_the_environment_in_megabytes(monkeypatch, raw, limit):
+    """`ROCKING_MAX_RECORD_MB` is in MB (10⁶ bytes), any positive number, below 1 too. Kills
+    records.py:625 `mb / 1_000_000`, `mb * 1000001`; records.py:623 `not` deleted, `not not`,
+    `mb <= 0` (a positive value refused), `mb > 1` (0.5 MB refused)."""
+    monkeypatch.setenv(RECORD_LIMIT_ENV, raw)
+    assert record_size_limit() == limit
+
+
+@pytest.mark.parametrize("raw", ["0", "-3", "lots", "nan", "inf"])
+def test_a_record_size_limit_that_is_not_a_positive_number_is_refused(monkeypatch, raw):
+    """Kills records.py:623 `mb >= 0` (0 accepted), `or` for `and` (−3 accepted; inf then
+    overflows in `int`), records.py:621 `ValueError` not caught (a text gives float()'s own
+    message, which names neither the variable nor the value)."""
+    monkeypatch.setenv(RECORD_LIMIT_ENV, raw)
+    message = f"ROCKING_MAX_RECORD_MB must be a positive number of MB, got {raw!r}"
+    with pytest.raises(ValueError, match=re.escape(message)):
+        record_size_limit()
+
+
+def test_the_default_record_size_limit_is_50_mb(tmp_path, monkeypatch):
+    """Without the environment variable the limit is 50 MB (10⁶ bytes each): one byte more is
+    refused. Kills records.py:52 `MAX_RECORD_BYTES = 50000001`."""
+    monkeypatch.delenv(RECORD_LIMIT_ENV, raising=False)
+    assert record_size_limit() == 50_000_000
+    with pytest.raises(RecordError, match="over the 50 MB limit"):
+        read_record(_sparse(tmp_path, 50_000_001))
+
+
+def test_a_record_exactly_at_the_size_limit_is_read(tmp_path):
+    """Kills records.py:634 `size >= limit`."""
+    path = _write(tmp_path, "ok.AT2", _PEER_TOP + "IN UNITS OF G\nNPTS= 2, DT= .01\n1 2\n")
+    size = path.stat().st_size
+    assert read_record(path, max_bytes=size).values.tolist() == [_G, 2 * _G]
+    with pytest.raises(RecordError, match="over the"):
+        read_record(path, max_bytes=size - 1)
+
+
+@pytest.mark.parametrize(
+    ("size", "limit", "said"),
+    [
+        (1_000_001, 1_000_000, "the file is 1 MB, over the 1 MB limit for a record (reading it "
+         "would take about 10 MB of memory); use a shorter or decimated record, or raise the limit "
+         "with the environment variable ROCKING_MAX_RECORD_MB=2 (max_bytes= in Python)"),
+        (2_500_000, 2_000_000, "the file is 2.5 MB, over the 2 MB limit for a record (reading it "
+         "would take about 25 MB of memory)"),
+        (95_000_000, 50_000_000, "the file is 95 MB, over the 50 MB limit for a record (reading it "
+         "would take about 950 MB of memory)"),
+        (100_000_000, 50_000_000, "the file is 100 MB, over the 50 MB limit for a record (reading "
+         "it would take about 1 GB of memory); use a shorter or decimated record, or raise the "
+         "limit with the environment variable ROCKING_MAX_RECORD_MB=100 (max_bytes= in Python)"),
+        (125_050_000, 50_000_000, "the file is 125 MB, over the 50 MB limit for a record (reading "
+         "it would take about 1.3 GB of memory); use a shorter or decimated record, or raise the "
+         "limit with the environment variable ROCKING_MAX_RECORD_MB=126 (max_bytes= in Python)"),
+    ],
+    ids=["1 MB", "2.5 MB", "95 MB", "100 MB", "125 MB"],
+)
+def test_a_record_over_the_size_limit_is_refused_saying_its_size_and_the_memory_it_needs(
+        tmp_path, size, limit, said):
+    """The size in MB (10⁶ bytes), the limit, ten times the size as the memory (in GB from 1 GB
+    on), and the smallest whole-MB limit that would let the file through. Kills
+    records.py:635 `size * 1_000_000`, `size / 1000001` (the ceiling of 1.000001 MB is 2);
+    records.py:640 `limit * 1_000_000`, `limit / 1000001`; records.py:636: `10 / mb` in either
+    unit or in the test, `* 1000`, `11 * mb` in either unit or in the test, `/ 1001` (1.2 GB),
+    `>= 1001`, `> 1000` (100 MB), `<` and `not` (the units swapped)."""
+    path = _sparse(tmp_path, size)
+    with pytest.raises(RecordError) as info:
+        read_record(path, max_bytes=limit)
+    assert info.value.line is None and info.value.reason.startswith(said)
+    assert str(info.value).startswith(f"{path}: ")
+
+
+def test_a_forced_format_error_says_what_the_file_looks_like_only_when_it_is_another_format(
+        tmp_path):
+    """`format="esm"` on a PEER file: the ESM reader's error, plus a hint that the file looks
+    like a PEER AT2 file; `format="peer"` on a PEER file with a bad header: the error alone.
+    Kills records.py:598 `detected != forced` and `not detected == forced` (the hint given in
+    the wrong case only)."""
+    peer = _write(tmp_path, "rec.AT2", _PEER_TOP + "IN UNITS OF G\nNPTS= 2, DT= .01\n1 2\n")
+    with pytest.raises(RecordError) as info:
+        read_record(peer, format="esm")
+    assert str(info.value).endswith(" (format 'esm' was asked for, but the file looks like a PEER "
+                                    "AT2 file: omit the format to detect it)")
+    bad = _write(tmp_path, "bad.AT2", _PEER_TOP + "IN UNITS OF G\nNPTS= many, DT= .01\n1 2\n")
+    with pytest.raises(RecordError) as info:
+        read_record(bad, format="peer")
+    assert str(info.value) == f"{bad}: line 4: malformed header: NPTS = 'many' is not an integer"
+
+
+def test_a_bundled_record_is_found_by_its_name_in_any_case():
+    """Kills records.py:678 `!=` (every other record matches), records.py:679 `len(folded) == 2`,
+    records.py:680 `folded[1]`."""
+    assert resolve_record("KOBE1995_takatori_000") == bundled_records()["Kobe1995_Takatori_000"]
+
+
+def test_an_unknown_record_name_suggests_at_most_three_close_names():
+    """Kills records.py:682 `if not close` (no suggestion when there are some, an empty one
+    when there are none), records.py:681 `n=4` (a fourth, Kocaeli, suggested)."""
+    with pytest.raises(FileNotFoundError) as info:
+        resolve_record("Northridge1994_Sta_000")
+    assert ("Did you mean Northridge1994_SylmarConverterSta_052, Northridge1994_RinaldiReceivingSta_228, "
+            "Northridge1994_CastaicOldRidgeRoute_090_2col? Bundled records: ") in str(info.value)
+    with pytest.raises(FileNotFoundError) as info:
+        resolve_record("zzz")
+    assert "Did you mean" not in str(info.value)
+    assert str(info.value).startswith("'zzz' is neither an existing file nor a bundled record. Bundled")
+
+
+@pytest.mark.parametrize(
+    ("name", "text", "line", "field"),
+    [
+        ("dt0.AT2", _PEER_TOP + "IN UNITS OF G\nNPTS= 3, DT= 0.0 SEC\n1 2 3\n", 4, "DT = '0.0'"),
+        ("dt0.ASC", "EVENT_NAME: TEST\nNDATA: 3\nSAMPLING_INTERVAL_S: 0\nUNITS: g\n1\n2\n3\n", 3,
+         "SAMPLING_INTERVAL_S = '0'"),
+    ],
+    ids=["peer", "esm"],
+)
+def test_a_zero_sampling_interval_is_refused_at_its_header_line(tmp_path, name, text, line, field):
+    """Kills records.py:265 `dt >= 0.0` (DT = 0 accepted: every time is 0, and the error is
+    GroundMotion's, about time[1] = 0.0, with no line)."""
+    path = _write(tmp_path, name, text)
+    with pytest.raises(RecordError) as info:
+        read_record(path)
+    assert str(info.value) == f"{path}: line {line}: malformed header: {field} must be positive"
+
+
+def test_the_event_of_a_peer_file_is_its_second_header_line(tmp_path):
+    """A PEER file's event is line 2 of its header; a header of the NPTS line alone has none.
+    Kills records.py:313 `len(header) >= 1` (IndexError on a one-line header)."""
+    standard = _write(tmp_path, "std.AT2", _PEER_TOP + "IN UNITS OF G\nNPTS= 2, DT= .01\n1 2\n")
+    assert read_record(standard).meta["event"] == "Test, 1/1/2000, Nowhere, 0"
+    bare = _write(tmp_path, "bare.AT2", "NPTS= 3, DT= .01 SEC, ACCELERATION IN UNITS OF G\n1 2 3\n")
+    gm = read_record(bare)
+    assert gm.meta["event"] == "" and gm.time.tolist() == [0.0, 0.01, 0.02]
+    assert gm.values.tolist() == [_G, 2 * _G, 3 * _G]
+
+
+def test_the_units_override_is_recorded_only_when_it_replaced_the_header_units(tmp_path):
+    """A PEER file in g read as cm/s² with `units_override=True` says so in its meta; read with
+    units that agree with the header, it does not. Kills records.py:562 `units is None` (the
+    override not recorded) and `or` (recorded whenever units are given)."""
+    path = _write(tmp_path, "g.AT2", _PEER_TOP + "ACCELERATION IN UNITS OF G\nNPTS= 2, DT= .01\n50 -20\n")
+    overridden = read_record(path, units="cm/s2", units_override=True)
+    assert overridden.meta["units_override"] is True and overridden.values.tolist() == [0.5, -0.2]
+    agreeing = read_record(path, units="G")
+    assert agreeing.meta["units_override"] is False
+    assert agreeing.values.tolist() == [50 * _G, -20 * _G]
+
+
+@pytest.mark.parametrize(
+    ("name", "text", "line"),
+    [
+        ("v.AT2", _PEER_TOP + "VELOCITY TIME SERIES IN UNITS OF CM/S\nNPTS= 2, DT= .01\n1 2\n", 4),
+        ("d.AT2", _PEER_TOP + "DISPLACEMENT TIME SERIES IN UNITS OF CM\nNPTS= 2, DT= .01\n1 2\n", 4),
+        ("v.ASC", "EVENT_NAME: TEST\nNDATA: 2\nSAMPLING_INTERVAL_S: 0.01\nUNITS: cm/s\n"
+         "DATA_TYPE: VELOCITY\n1\n2\n", 5),
+    ],
+    ids=["peer velocity", "peer displacement", "esm velocity"],
+)
+def test_a_velocity_or_displacement_record_is_refused(tmp_path, name, text, line):
+    """The message is compared whole: the file names here do not contain 'velocity' (the test of
+    test_records.py matched it in its tmp_path's name, so a velocity file refused for its units
+    'CM/S' passed). Kills records.py:271 `not` deleted and `not` added before the first search
+    (a velocity record read as an acceleration)."""
+    path = _write(tmp_path, name, text)
+    with pytest.raises(RecordError) as info:
+        read_record(path)
+    assert str(info.value) == (f"{path}: line {line}: this is a velocity or displacement record, "
+                               "not an acceleration")
+
+
+@pytest.mark.parametrize(
+    "title",
+    ["PEER RECORD, SCALED IN UNITS OF G",
+     "ACCELERATION IN UNITS OF G (VELOCITY AND DISPLACEMENT IN OTHER FILES)"],
+    ids=["no kind named", "acceleration and velocity named"],
+)
+def test_a_peer_header_that_does_not_say_velocity_alone_is_an_acceleration(tmp_path, title):
+    """Kills records.py:271 `or` for `and` (a header without the word ACCEL refused), `not`
+    added (the same), `not` deleted (a header naming acceleration and velocity refused)."""
+    path = _write(tmp_path, "acc.AT2", f"{title}\nTest\nNPTS= 2, DT= .01\n0.5 -0.25\n")
+    assert read_record(path).values.tolist() == [0.5 * _G, -0.25 * _G]
+
+
+def test_blank_lines_between_values_are_skipped(tmp_path):
+    """Kills records.py:227 `continue` → `break` (reading stops at a blank line: 2 values of 4)."""
+    path = _write(tmp_path, "gap.AT2", _PEER_TOP + "IN UNITS OF G\nNPTS= 4, DT= .01\n1 2\n\n  \n3 4\n")
+    assert read_record(path).values.tolist() == [_G, 2 * _G, 3 * _G, 4 * _G]
+
+
+def test_a_two_column_header_may_hold_blank_lines(tmp_path):
+    """The data start at the first line that starts with a number, not at a blank line. Kills
+    records.py:383 `return True` for a blank line (the header ends at the blank line and
+    'Time[s] Accel[g]' is read as a row)."""
+    path = _write(tmp_path, "blank.dat", "Castaic record\n\nTime[s] Accel[g]\n0.0 0.1\n0.01 -0.2\n")
+    gm = read_record(path)
+    assert gm.meta["header"] == ("Castaic record", "", "Time[s] Accel[g]")
+    assert gm.values.tolist() == [0.1 * _G, -0.2 * _G] and gm.units == "g"
+
+
+def test_the_npts_line_is_looked_for_in_the_first_ten_lines(tmp_path):
+    """Line 10 is still read; on line 11 the error says where it was looked for. Kills
+    records.py:93 `_PEER_HEADER_SEARCH = 11`."""
+    ten = _write(tmp_path, "ten.AT2", "ACCELERATION IN UNITS OF G\n" + "note\n" * 8
+                 + "NPTS= 2, DT= .01\n1 2\n")
+    assert read_record(ten).n == 2
+    eleven = _write(tmp_path, "eleven.AT2", "ACCELERATION IN UNITS OF G\n" + "note\n" * 9
+                    + "NPTS= 2, DT= .01\n1 2\n")
+    with pytest.raises(RecordError) as info:
+        read_record(eleven)
+    assert str(info.value) == (f"{eleven}: no 'NPTS= n, DT= x' line in the first 10 lines (PEER AT2 "
+                               "files have it on line 4)")
+
+
+def test_a_file_read_as_esm_without_a_key_line_names_line_1_and_quotes_60_characters(tmp_path):
+    """Kills records.py:337 `first_data == 1` (the error is then about missing fields), records.py:341
+    line 2, records.py:343 `[:61]`."""
+    first = "Strong-motion record of the Northridge earthquake, station 24278, component 090"
+    path = _write(tmp_path, "prose.txt", first + "\n0.0 0.1\n0.01 0.2\n")
+    with pytest.raises(RecordError) as info:
+        read_record(path, format="esm", units="g")
+    assert info.value.line == 1
+    assert info.value.reason.startswith(
+        "not an ESM ASCII file: the header must start with 'KEY: value' lines (EVENT_NAME: ..., "
+        f"NDATA: ...), got {first[:60]!r} (format 'esm' was asked for")
