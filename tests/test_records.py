@@ -296,8 +296,38 @@ def test_velocity_file_is_refused(tmp_path):
     text = AT2_HEADER.replace("ACCELERATION TIME SERIES IN UNITS OF G",
                               "VELOCITY TIME SERIES IN UNITS OF CM/S")
     path = write(tmp_path, "vel.VT2", text + "NPTS= 2, DT= .01\n1 2\n")
-    with pytest.raises(RecordError, match="velocity"):
+    # the whole message: "velocity" alone also matched the test's own folder name
+    with pytest.raises(RecordError) as info:
         read_record(path, format="peer")
+    assert str(info.value) == f"{path}: line 4: this is a velocity or displacement record, not an acceleration"
+
+
+@pytest.mark.parametrize("npts, dt, row, line, bad", [
+    ("3", ".01", "1_000 2 3", 5, "cannot parse '1_000' as a number"),
+    ("1_0", ".01", "1 2 3", 4, "malformed header: NPTS = '1_0' is not an integer"),
+    ("3", "0.0_1", "1 2 3", 4, "malformed header: DT = '0.0_1' is not a number"),
+])
+def test_underscores_in_numbers_are_refused(tmp_path, npts, dt, row, line, bad):
+    """Python reads "1_000" as 1000; no record format writes numbers so. A value of 1_000 was read
+    as 1000 g, and NPTS= 1_0 as 10 points: refused now, naming the line and the token."""
+    path = write(tmp_path, "us.AT2", f"PEER\nEV\nACCELERATION IN UNITS OF G\nNPTS= {npts}, DT= {dt}\n{row}\n")
+    with pytest.raises(RecordError) as info:
+        read_record(path)
+    assert str(info.value) == f"{path}: line {line}: {bad}"
+
+
+def test_two_column_rows_with_underscores_are_refused(tmp_path):
+    path = write(tmp_path, "us.dat", "Time[s] Accel[g]\n0 0.1\n0.01 1_0\n")
+    with pytest.raises(RecordError, match=re.escape("line 3: cannot parse '1_0' as a number")):
+        read_record(path)
+
+
+def test_a_peer_header_of_a_title_and_the_npts_line_names_no_event(tmp_path):
+    """The event is the header's second line only when the NPTS line is not that line."""
+    path = write(tmp_path, "two.AT2", "ACCELERATION IN UNITS OF G\nNPTS= 3, DT= .01\n1 2 3\n")
+    assert read_record(path).meta["event"] == ""
+    full = write(tmp_path, "full.AT2", "PEER\nKobe 1995, Takatori\nACCELERATION IN UNITS OF G\nNPTS= 3, DT= .01\n1 2 3\n")
+    assert read_record(full).meta["event"] == "Kobe 1995, Takatori"
 
 
 def esm_text(ndata: str = "3", dt: str = "0.010000", units: str = "cm/s^2",

@@ -198,9 +198,9 @@ def _read_lines(path: Path) -> list[str]:
 
 def _to_float(token: str, path: Path, line: int) -> float:
     """Parse one number; Fortran ``D`` exponents are accepted, NaN/inf are not."""
+    if "_" in token:  # Python's float() accepts "1_000"; no record format does
+        raise RecordError(path, line, f"cannot parse {token!r} as a number")
     try:
-        if "_" in token:  # Python's float() accepts "1_000"; no record format does
-            raise ValueError
         x = float(token)
     except ValueError:
         try:
@@ -247,6 +247,8 @@ def _read_values(
 
 def _header_int(raw: str, path: Path, line: int, key: str) -> int:
     try:
+        if "_" in raw:  # int() reads "1_0" as 10
+            raise ValueError
         n = int(raw)
     except ValueError:
         msg = f"malformed header: {key} = {raw!r} is not an integer"
@@ -258,6 +260,8 @@ def _header_int(raw: str, path: Path, line: int, key: str) -> int:
 
 def _header_dt(raw: str, path: Path, line: int, key: str) -> float:
     try:
+        if "_" in raw:  # float() reads "0.0_1" as 0.01
+            raise ValueError
         dt = float(raw)
     except ValueError:
         msg = f"malformed header: {key} = {raw!r} is not a number"
@@ -310,7 +314,8 @@ def _parse_peer(lines: list[str], path: Path) -> dict[str, Any]:
         "format": "peer",
         "npts": npts,
         "dt": dt,
-        "event": header[1].strip() if len(header) > 1 else "",
+        # the event is line 2 of a full header; a header of a title and the NPTS line has none
+        "event": header[1].strip() if len(header) > 2 else "",
         "header": tuple(h.rstrip() for h in header),
     }
     return {
