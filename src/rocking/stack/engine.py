@@ -55,6 +55,9 @@ from .modes import (
 )
 
 FSAL5 = 6  # row of K holding the right-hand side at a Dormand–Prince 5(4) step's end
+# new_workspace's tuple after the frame and the solve scratch (its first 15 arrays): dy, Λ, a
+# state-sized work array, and Λ at the end of the last step
+WS_DY, WS_LAM, WS_WORK, WS_LAM_END = 15, 16, 17, 18
 N_SUB = 4  # interior points of a step where the guards are sampled
 LOOKAHEAD = 1e-9  # s (relative to t beyond 1 s): where the mode after an event is decided
 MAX_REPEATS = 50  # events at one instant before the run stops as inconsistent
@@ -135,7 +138,7 @@ def evaluate_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, dy, lam, ws
     nz = 3 * n
     z = y[:nz]
     zd = y[nz:2 * nz]
-    A, beta, C, X, Xd, th, thd, M, f, zdd, frozen, free, row_of, Kr, br = ws[:15]
+    A, beta, C, X, Xd, th, thd, M, f, zdd, frozen, free, row_of, Kr, br = ws[:WS_DY]
     forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, th, thd)
     frozen_set(nstate, tstate, P, frozen)
     n_free = 0
@@ -170,7 +173,7 @@ def guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g, held, ws):
 @njit(cache=True, _nrt=False)
 def guards_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, g, held, ws):
     """:func:`guards` under the floor accelerations ah, av (m/s²) rather than at a time."""
-    dy, lam = ws[15], ws[16]
+    dy, lam = ws[WS_DY], ws[WS_LAM]
     evaluate_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, dy, lam, ws)
     guards_from(P, ends, anchor, nstate, tstate, y, lam, g, held)
 
@@ -241,19 +244,19 @@ def _band_guards(band0, band_h, band_v, loc, t, g):
 
 @njit(cache=True, _nrt=False)
 def _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, out, ws):
-    evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, out, ws[16], ws)
+    evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, out, ws[WS_LAM], ws)
 
 
 @njit(cache=True, _nrt=False)
 def _step(P, ends, anchor, nstate, tstate, t, y, h, loc, gravity, K, y_new, rtol, atol, n_ctrl, ws):
     """One DOP853 step; returns its error norm. The contact forces at its end (the FSAL stage)
-    are left in ws[18], for the guards and the tracking there."""
-    work = ws[17]
+    are left in ws[WS_LAM_END], for the guards and the tracking there."""
+    work = ws[WS_WORK]
     for stage in range(1, dop853.N_STAGES):
         dop853.stage_input(y, K, h, stage, work)
         _rhs(P, ends, anchor, nstate, tstate, t + dop853.C[stage] * h, work, loc, gravity, K[stage], ws)
     dop853.advance(y, K, h, y_new)
-    evaluate(P, ends, anchor, nstate, tstate, t + h, y_new, loc, gravity, K[dop853.FSAL], ws[18], ws)
+    evaluate(P, ends, anchor, nstate, tstate, t + h, y_new, loc, gravity, K[dop853.FSAL], ws[WS_LAM_END], ws)
     return dop853.error_norm(y, y_new, K, h, rtol, atol, n_ctrl)
 
 
@@ -261,19 +264,19 @@ def _step(P, ends, anchor, nstate, tstate, t, y, h, loc, gravity, K, y_new, rtol
 def _step5(P, ends, anchor, nstate, tstate, t, y, h, loc, gravity, K, y_new, rtol, atol, n_ctrl, ws):
     """One Dormand–Prince 5(4) step, for a step cut short by a sample of a record (as
     rocking.simulate): where DOP853's 12 stages would buy accuracy the short step already has.
-    Its end forces go to ws[18], its end right-hand side to K[FSAL5]."""
-    work = ws[17]
+    Its end forces go to ws[WS_LAM_END], its end right-hand side to K[FSAL5]."""
+    work = ws[WS_WORK]
     for stage in range(1, 6):
         dopri5.stage_input(y, K, h, stage, work)
         _rhs(P, ends, anchor, nstate, tstate, t + dopri5.C[stage] * h, work, loc, gravity, K[stage], ws)
     dopri5.advance(y, K, h, y_new)
-    evaluate(P, ends, anchor, nstate, tstate, t + h, y_new, loc, gravity, K[FSAL5], ws[18], ws)
+    evaluate(P, ends, anchor, nstate, tstate, t + h, y_new, loc, gravity, K[FSAL5], ws[WS_LAM_END], ws)
     return dopri5.error_norm(y, y_new, K, h, rtol, atol, n_ctrl)
 
 
 @njit(cache=True, _nrt=False)
 def _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, h, loc, gravity, K, F, ws):
-    work = ws[17]
+    work = ws[WS_WORK]
     for j in range(dop853.N_EXTRA):
         dop853.extra_stage_input(y, K, h, j, work)
         _rhs(P, ends, anchor, nstate, tstate, t + dop853.C_EXTRA[j] * h, work, loc, gravity,
@@ -532,8 +535,8 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
         for sub in range(1, N_SUB + 1):
             x_hi = sub / N_SUB
             if sub == N_SUB:
-                # the step's last stage left the contact forces at its end in ws[18]
-                guards_from(P, ends, anchor, nstate, tstate, y_new, ws[18], g1, held)
+                # the step's last stage left the contact forces at its end in ws[WS_LAM_END]
+                guards_from(P, ends, anchor, nstate, tstate, y_new, ws[WS_LAM_END], g1, held)
             else:
                 dop853.dense(y, F, x_hi, ym)
                 guards(P, ends, anchor, nstate, tstate, t + x_hi * hs, ym, loc, gravity, g1, held, ws)
@@ -647,7 +650,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
         t = t + hs
         y[:] = y_new
         K[0, :] = K[fs, :]
-        lam[:] = ws[18]
+        lam[:] = ws[WS_LAM_END]
         _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, True)
         g0_ok = True  # (g0 now holds the guards at the step's end)
         for k in range(n):
@@ -762,7 +765,7 @@ def _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity
     n = P.shape[0]
     nz = 3 * n
     if not forces_known:
-        evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, ws[15], lam, ws)
+        evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, ws[WS_DY], lam, ws)
     for k in range(n):
         # (not once the block is past its tipping angle and falling: N → 0 there)
         tipped = abs(y[3 * k + 1]) >= math.atan2(P[k, P_BU], P[k, P_HU])
@@ -821,7 +824,7 @@ def _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, s
 def _save_grid(P, ends, anchor, nstate, tstate, t, y, h, F, dense_ok, K, loc, gravity, save_dt, next_grid, n_grid,
                samples, n_out, cap, slip0, d_impact, y_end, t_stop, ws):
     """Save the grid points in [t, t_stop] from the dense output of the step (t, t + h)."""
-    ym = ws[17]
+    ym = ws[WS_WORK]
     while next_grid < n_grid and n_out < cap:
         tg = next_grid * save_dt
         if tg > t_stop + 1e-15 * max(1.0, t_stop):
