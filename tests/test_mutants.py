@@ -433,6 +433,27 @@ def test_a_crest_at_the_threshold_to_an_ulp_at_the_start_settles_once():
     assert tied.summary()["peak_rotation"] < 1e-20 and not tied.overturned
 
 
+def test_a_block_sliding_with_its_friction_at_tan_alpha_slides_upright_to_a_verdict():
+    """A 0.4 × 2.0 m block (tan α = 0.2) sliding on the floor with μk = 0.2: while it slides, the
+    floor pushes its base at μk·g = g·tan α, its rocking threshold, to the last bit. Before, the
+    threshold guard, tied to rounding, fired at the start of each step: uplift, then θ went the
+    wrong way at once and the block settled, 100 000 times at one instant, status "max_events" and
+    no verdict (found by the seventh round of mutation). A tie is no uplift: the run ends at rest,
+    the rotation stays at rounding level, and the sliding is that of μk 1e-9 below the tie (to
+    1e-9 m)."""
+    def run(mu_k):
+        statue = rk.Statue(width=0.4, height=2.0, mass=50.0, friction=rk.Friction(static=0.2, kinetic=mu_k))
+        return rk.simulate(rk.System(statue=statue), rk.Harmonic(amplitude=2.5 * 0.2 * 9.81, frequency=2.0),
+                           throw=False)
+
+    tied, below = run(0.2), run(0.2 * (1.0 - 1e-9))
+    assert tied.status == below.status == "completed" and len(tied.events) < 50
+    s, ref = tied.summary(), below.summary()
+    assert not s["overturned"] and s["peak_rotation"] < 1e-12
+    assert abs(s["peak_sliding"] - ref["peak_sliding"]) < 1e-9
+    assert abs(s["residual_sliding"] - ref["residual_sliding"]) < 1e-9
+
+
 def test_a_jump_of_the_floor_motion_that_starts_the_rocking_is_an_event():
     """A record that begins at t = 1 s (zero before) jumps from 0 to 3 m/s², above g·tan α =
     1.63 m/s²: the statue starts to rock at the jump, which the events list as a BREAKPOINT
@@ -865,6 +886,13 @@ def _write(tmp_path, name, text):
     return path
 
 
+def _record_error(path) -> str:
+    """The message of the RecordError that reading ``path`` raises."""
+    with pytest.raises(RecordError) as info:
+        read_record(path)
+    return str(info.value)
+
+
 def _sparse(tmp_path, size):
     """A file of `size` bytes that takes no disk space (the size check only stats the file)."""
     path = tmp_path / "big.AT2"
@@ -887,10 +915,8 @@ def test_an_unsorted_time_is_reported_with_the_time_before_it(tmp_path):
     `times[i + 1]` and `times[i - 2]` (the previous time quoted as 0.03 or 0.01)."""
     rows = "0.00 0.1\n0.01 0.2\n0.02 0.3\n0.015 0.4\n0.03 0.5\n"  # lines 4 to 8
     path = _write(tmp_path, "unsorted.dat", _TWO_COLUMN_TOP + rows)
-    with pytest.raises(RecordError) as info:
-        read_record(path)
-    assert str(info.value) == (f"{path}: line 7: time 0.015 is not greater than the previous time "
-                               "0.02 (line 6); times must be strictly increasing")
+    assert _record_error(path) == (f"{path}: line 7: time 0.015 is not greater than the previous time "
+                                   "0.02 (line 6); times must be strictly increasing")
 
 
 @pytest.mark.parametrize(
@@ -1117,10 +1143,8 @@ def test_a_velocity_or_displacement_record_is_refused(tmp_path, name, text, line
     'CM/S' passed). Kills records.py:271 `not` deleted and `not` added before the first search
     (a velocity record read as an acceleration)."""
     path = _write(tmp_path, name, text)
-    with pytest.raises(RecordError) as info:
-        read_record(path)
-    assert str(info.value) == (f"{path}: line {line}: this is a velocity or displacement record, "
-                               "not an acceleration")
+    assert _record_error(path) == (f"{path}: line {line}: this is a velocity or displacement record, "
+                                   "not an acceleration")
 
 
 @pytest.mark.parametrize(
@@ -1177,3 +1201,167 @@ def test_a_file_read_as_esm_without_a_key_line_names_line_1_and_quotes_60_charac
     assert info.value.reason.startswith(
         "not an ESM ASCII file: the header must start with 'KEY: value' lines (EVENT_NAME: ..., "
         f"NDATA: ...), got {first[:60]!r} (format 'esm' was asked for")
+
+
+# ------------------------------------------------------------------------------------------------
+# models/modes.py (seventh round): Painlevé's paradox at t = 0, dips inside one step, tan α = μs
+# ------------------------------------------------------------------------------------------------
+
+# A block 0.2555 × 0.7 m (tan α = 0.365) with μs = μk = 2 on the floor, set sliding at 0.5 m/s.
+_PAINLEVE_BLOCK = rk.Statue(width=0.7 * 0.365, height=0.7, mass=1.0, friction=rk.Friction(static=2.0, kinetic=2.0))
+
+
+def test_a_block_set_sliding_into_painleves_paradox_is_reported_singular_at_once():
+    """A block sliding towards +x with μk = 2 > tan α on a floor at a = +1 m/s² has no consistent
+    regime (derivation §3.1, §5): sliding upright needs |a + ü| = μk·g ≤ g·tan α; slide-rock about
+    the leading corner (σ = s = +1) has D = M·I_O − (m R)²·cos α·(cos α + μk·sin α) < 0 (Painlevé),
+    and about the trailing corner s·θ̈ ∝ −(μk·cos α + sin α)/D < 0. The run must not pretend
+    otherwise: the block is reported sliding upright at t = 0 (fewest moving degrees of freedom,
+    flagged), the rocking threshold is past at once, an uplift into slide-rock follows at t = 0
+    (flagged too), and the run stops "singular" (a SimulationError by default). Kills modes.py:121
+    (`n_sig = 2`: a moving pedestal "held" at once), modes.py:134 (`sig_list[1]`: the fallback's
+    slip dropped), modes.py:135 (`or`: the fallback rocks at t = 0, no uplift), modes.py:136-137
+    (the fallback's rocking direction from the slide-rock ü, from a − ü, or reversed: the
+    trailing corner) and modes.py:174 (the fallback reported consistent)."""
+    from rocking.models.regimes import EventKind, Regime
+
+    m, b, h = 1.0, 0.5 * 0.7 * 0.365, 0.35
+    alpha, big_r, i_o, mu = _PAINLEVE_BLOCK.slenderness, math.hypot(b, h), _PAINLEVE_BLOCK.inertia_about_corner, 2.0
+    assert mu > math.tan(alpha)
+    assert m * i_o - (m * big_r) ** 2 * math.cos(alpha) * (math.cos(alpha) + mu * math.sin(alpha)) < 0.0
+    floor = rk.Harmonic(amplitude=1.0, frequency=1.0)  # cos form: a(0) = +1 m/s², between 0 and μk·g
+    r = rk.simulate(rk.System(statue=_PAINLEVE_BLOCK), floor, initial_sliding_velocity=0.5, throw=False)
+    assert r.status == "singular"
+    assert r.events == [(0.0, EventKind.UPLIFT, Regime.SLIDE, Regime.SLIDE_ROCK)]
+    assert Regime(int(r.regime[0])) == Regime.SLIDE
+    assert "2 instant(s) where no regime was strictly consistent" in r.warnings
+    with pytest.raises(rk.SimulationError, match="Painlevé"):
+        rk.simulate(rk.System(statue=_PAINLEVE_BLOCK), floor, initial_sliding_velocity=0.5)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class _PushedWhileTheFloorDips(rk.RectanglePulse):
+    """A constant horizontal push with a vertical Ricker dip: a user-defined motion whose
+    vertical acceleration is not piecewise linear (AbstractMotion lets a subclass give one)."""
+
+    dip: rk.RickerPulse
+
+    def vertical_signal(self):
+        return self.dip.signal()
+
+    def vertical_acceleration(self, t):
+        return self.dip.acceleration(np.asarray(t, dtype=float))
+
+
+def test_a_dip_of_the_vertical_acceleration_inside_one_step_starts_the_rocking():
+    """A statue (tan α = 1/6) at rest under a constant 0.9·g·tan α, while the floor drops briefly
+    (a vertical Ricker dip, crest at 0.75 s) so that (g + a_v)·tan α falls 0.1 % below the push at
+    its crest: the rocking must start where (g + a_v(t))·tan α = a_g first (closed form of the
+    Ricker, found by root bracketing), about 9 ms before the crest, and the statue rocks
+    (tiny, but not zero). Rest steps are long (0.1 s) and both their ends lie above the threshold:
+    only the guard tracked at the step's stages sees the dip. Kills modes.py:87 (`g − a_v` in the
+    tracked threshold: a dip of the floor looks like a rise, and the onset is missed)."""
+    from scipy.optimize import brentq
+
+    from rocking.models.regimes import EventKind, Regime
+
+    tan_alpha = 0.2 / 1.2
+    push = 0.9 * rk.g * tan_alpha
+    dip = rk.RickerPulse(amplitude=-(rk.g - push * (1.0 - 1e-3) / tan_alpha), frequency=2.0)
+    motion = _PushedWhileTheFloorDips(amplitude=push, width=2.0, dip=dip)
+    r = rk.simulate(rk.System(statue=_SLENDER), motion)
+
+    def threshold_margin(t):
+        return (rk.g + dip.acceleration(np.array([t]))[0]) * tan_alpha - push
+
+    onset = brentq(threshold_margin, 0.6, dip.t0, xtol=1e-14)
+    assert 0.005 < dip.t0 - onset < 0.015
+    assert r.events[0][:4] == (pytest.approx(onset, abs=1e-9), EventKind.UPLIFT, Regime.REST, Regime.ROCK)
+    assert r.summary()["first_rocking_time"] == pytest.approx(onset, abs=1e-9)
+    assert r.peak_rotation > 1e-7 and r.status == "completed"
+
+
+def test_a_sliding_pedestal_whose_velocity_touches_zero_inside_one_step_stops_there():
+    """In slide-rock the pedestal's acceleration does not depend on its own velocity (derivation
+    §3.1: ü and θ̈ solve the 2×2 system with F = −σ·μk·N, in which u̇ does not appear), so a start
+    slower by Δ shifts u̇(t) by −Δ and leaves θ(t) unchanged. A statue leaning at 0.05 rad on a
+    pedestal sliding at 2 m/s (μs = μk = 0.2) under a 4 m/s², 3 Hz floor: u̇ has a local minimum
+    v_min ≈ 1.44 m/s at t_min ≈ 0.145 s while the statue leans at 0.12 rad. Started slower by
+    v_min + 1e-6 m/s, u̇ touches zero for a fraction of a millisecond: the slide must stop where
+    the first run's u̇ equals v_min + 1e-6 (interpolated, to 1e-6 s), and with μs = μk the pedestal
+    slides on at t_min, where the sliding acceleration changes sign (the held pedestal's friction
+    demand reaches μs·N there). Both ends of that step see the pedestal sliding: only the guard
+    σ·u̇ tracked at the step's stages finds the touch. Kills modes.py:85 (σ·θ tracked for σ·u̇)."""
+    from rocking.models.regimes import EventKind, Regime
+
+    pedestal = rk.Pedestal(mass=20.0, friction=rk.Friction(static=0.2, kinetic=0.2))
+    system, floor = rk.System(statue=_SLENDER, pedestal=pedestal), rk.Harmonic(amplitude=4.0, frequency=3.0, cycles=2)
+    kwargs = dict(initial_rotation=0.05, initial_angular_velocity=0.3, duration=0.19, options=rk.Options(save_dt=1e-5))
+    fast = rk.simulate(system, floor, initial_sliding_velocity=2.0, **kwargs)
+    assert fast.events == []
+    window = (fast.t > 0.1) & (fast.t < 0.18)
+    k = int(np.argmin(fast.u_dot[window]))
+    t_min, v_min = fast.t[window][k], fast.u_dot[window][k]
+    assert fast.theta[window][k] > 0.1
+
+    slow = rk.simulate(system, floor, initial_sliding_velocity=2.0 - v_min - 1e-6, **kwargs)
+    falling = window & (fast.t <= t_min)
+    t_touch = np.interp(-(v_min + 1e-6), -fast.u_dot[falling], fast.t[falling])
+    stop, slip = slow.events
+    assert (stop.kind, stop.before, stop.after) == (EventKind.STOP, Regime.SLIDE_ROCK, Regime.ROCK)
+    assert stop.time == pytest.approx(t_touch, abs=1e-6) and 1e-4 < t_min - stop.time < 1e-3
+    assert (slip.kind, slip.after) == (EventKind.SLIP, Regime.SLIDE_ROCK)
+    assert slip.time == pytest.approx(t_min, abs=2e-5)
+    before = slow.t < stop.time
+    np.testing.assert_allclose(slow.theta[before], fast.theta[: before.sum()], atol=1e-11)
+
+
+def test_a_statue_whose_tan_alpha_equals_the_floor_friction_lifts_and_slips_at_the_same_instant():
+    """A statue with b/h = 1/4 on a pedestal with μs = 1/4 (μk = 0.2) under a ramp a_g = 3·t m/s²
+    (for 1 s): the rocking threshold g·tan α and the friction cone μs·g are reached together, at
+    t₀ = g/4/3. The uplift is found first; the pedestal slips at the same instant, and then it
+    slides with the statue upright (its base feels μk·g < g·tan α), so no rocking is entered and
+    no instant is inconsistent: at the uplift, rocking starts with s·θ̈ = 0 to rounding, which the
+    tolerance for a just-crossed threshold accepts. The slide stops where u̇ = ∫(−a_g + μk·g) dt
+    returns to zero: t = 1 + |u̇(1)|/(μk·g) with u̇(1) = −1.5·(1 − t₀²) + μk·g·(1 − t₀). Kills
+    modes.py:171 (`not forbid_rest`: the strict test applied right after the uplift, which flags
+    this onset as inconsistent)."""
+    from rocking.models.regimes import EventKind, Regime
+
+    statue = rk.Statue(width=0.5, height=2.0, mass=50.0, restitution=0.8)
+    pedestal = rk.Pedestal(mass=20.0, friction=rk.Friction(static=0.25, kinetic=0.2))
+    r = rk.simulate(rk.System(statue=statue, pedestal=pedestal), rk.Ramp(rate=3.0, end=1.0), duration=1.5)
+    t0 = rk.g * 0.25 / 3.0
+    u_dot_1 = -1.5 * (1.0 - t0**2) + 0.2 * rk.g * (1.0 - t0)
+    uplift, slip, stop = r.events
+    assert (uplift.kind, uplift.before, uplift.after) == (EventKind.UPLIFT, Regime.REST, Regime.ROCK)
+    assert (slip.kind, slip.before, slip.after) == (EventKind.SLIP, Regime.ROCK, Regime.SLIDE)
+    assert uplift.time == slip.time == pytest.approx(t0, abs=1e-9)
+    assert (stop.kind, stop.after) == (EventKind.STOP, Regime.REST)
+    assert stop.time == pytest.approx(1.0 - u_dot_1 / (0.2 * rk.g), abs=1e-9)
+    assert r.peak_rotation == 0.0 and r.summary()["first_rocking_time"] is None
+    assert not [w for w in r.warnings if "strictly consistent" in w], r.warnings
+
+
+def test_a_block_whose_tan_alpha_equals_its_friction_slides_upright_from_the_common_onset():
+    """A block alone with b/h = 0.1 and μs = 0.1 (μk = 0.08) under a ramp a_g = −2·t m/s² (for
+    1.5 s): the rocking threshold and the friction cone are reached together at t₀ = μs·g/2. The
+    events say what happens there: the uplift is found first, and the base slips at the same
+    instant, so the block slides without rocking (its base feels μk·g < g·tan α), until
+    u̇ = ∫(−a_g − μk·g) dt returns to zero: u̇(1.5) = 1.5² − t₀² − μk·g·(1.5 − t₀), then
+    t = 1.5 + u̇(1.5)/(μk·g). Kills modes.py:149 (`n_s = 2`: after the uplift the block is put back
+    at rest, an "uplift" from rest to rest) and modes.py:171 (the tolerance after an uplift
+    `−1.000000001·g/R`: slide-rock about to turn the wrong way, s·θ̈ ∝ μk·cos α − sin α < 0, is
+    taken as the onset)."""
+    from rocking.models.regimes import EventKind, Regime
+
+    block = rk.Statue(width=0.2, height=2.0, mass=50.0, restitution=0.8, friction=rk.Friction(static=0.1, kinetic=0.08))
+    r = rk.simulate(rk.System(statue=block), rk.Ramp(rate=-2.0, end=1.5), duration=4.0)
+    t0, mu_k_g = rk.g * 0.1 / 2.0, 0.08 * rk.g
+    u_dot = 1.5**2 - t0**2 - mu_k_g * (1.5 - t0)
+    assert r.events == [
+        (pytest.approx(t0, abs=1e-9), EventKind.UPLIFT, Regime.REST, Regime.ROCK),
+        (pytest.approx(t0, abs=1e-9), EventKind.SLIP, Regime.ROCK, Regime.SLIDE),
+        (pytest.approx(1.5 + u_dot / mu_k_g, abs=1e-9), EventKind.STOP, Regime.SLIDE, Regime.REST),
+    ]
+    assert r.peak_rotation == 0.0 and r.summary()["first_rocking_time"] is None

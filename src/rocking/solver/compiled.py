@@ -639,8 +639,15 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                     # A friction or rocking threshold exactly tied when the regime was chosen
                     # (e.g. a pulse whose phase starts rocking at t = 0) and crossed right away:
                     # the regime ends at the start of the step.
-                    if i in (SLIP_TO_NEGATIVE, SLIP_TO_POSITIVE, ROCK_TO_NEGATIVE, ROCK_TO_POSITIVE):
+                    if i in (SLIP_TO_NEGATIVE, SLIP_TO_POSITIVE):
                         if g1[i] < 0.0:
+                            x_first, first = 0.0, i
+                    elif i in (ROCK_TO_NEGATIVE, ROCK_TO_POSITIVE):
+                        # A rocking threshold that stays tied (a block sliding on the floor with
+                        # μk = tan α exactly: its base's acceleration is the threshold for as long
+                        # as it slides) is not crossed: it only wobbles by rounding (1e-16 g),
+                        # and an uplift there would settle at once, again and again.
+                        if g1[i] < -1e-12 * p[G]:
                             x_first, first = 0.0, i
                     elif i == IMPACT and g1[i] < 0.0:
                         # Rocking began at a tangency of the threshold (the floor acceleration
