@@ -510,6 +510,9 @@ def test_a_block_pushed_partly_past_the_edge_stops_there_overhanging():
     assert r.blocks[1]["past_edge_time"] == r.events[0, 0] and r.blocks[0]["past_edge_time"] is None
     assert fall_text(r.summary(), 1) == f"no (past the edge below at {r.events[0, 0]:.3f} s)"
     assert fall_text(r.summary(), 0) == "no"
+    names = r.stack.names
+    assert r.verdict == (f"did not overturn; at rest at t = {r.end_time:.3f} s; "
+                         f"{names[1]} went past the edge of {names[0]} at t = {r.events[0, 0]:.3f} s")
 
 
 def test_a_mode_solve_satisfies_the_equations_of_that_mode():

@@ -139,7 +139,13 @@ class StackResponse:
             below = self.stack.names[k - 1] if k > 0 else "the floor"
             return (f"undetermined: {self.stack.names[k]} slid to the edge of {below} at t = {self.end_time:.3f} s; "
                     "the model stops there (treat it as falling off)")
-        return verdict_text(self.status, None, self.end_time)
+        text = verdict_text(self.status, None, self.end_time)
+        past = [(b["past_edge_time"], k) for k, b in enumerate(self.blocks) if b.get("past_edge_time") is not None]
+        if past:
+            # a near miss: no fall, but a block's corner went past the edge of what it stands on
+            t, k = min(past)
+            text += f"; {self.stack.names[k]} went past the edge of {self.stack.names[k - 1]} at t = {t:.3f} s"
+        return text
 
     def summary(self) -> dict:
         """``blocks`` (from the floor up) and ``interfaces`` (floor first); the top-level keys
