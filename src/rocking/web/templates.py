@@ -456,6 +456,30 @@ _SUMMARY_TABLES = """
   </div>
 """
 
+# The animation and the two plots of a result, statue or stack: the including template sets
+# animation_alt, animation_caption (after "Played in real time; ") and figures (key, element id, alt, caption).
+_RESULT_FIGURES = """<div class="card">
+  <h2>Animation and plots</h2>
+  <div class="figures">
+    <figure>
+      <img id="animation" alt="{{ animation_alt }}" src="{{ url_for('run_file', run_id=result.id, name=result.files.animation) }}">
+      <figcaption>{% if result.animation_speed > 1.001 %}Played at {{ "%g"|format(result.animation_speed|round(2)) }}× real
+        time (the run is longer than a minute){% else %}Played in real time{% endif %}; {{ animation_caption }}</figcaption>
+    </figure>
+    {% for key, element, alt, caption in figures %}
+    <figure>
+      <a href="{{ url_for('run_file', run_id=result.id, name=result.files[key]) }}" title="full size">
+      <picture>
+        {% if result.files.get(key ~ "_narrow") %}<source media="(max-width: 640px)" srcset="{{ url_for('run_file', run_id=result.id, name=result.files[key ~ '_narrow']) }}">{% endif %}
+        <img id="{{ element }}" alt="{{ alt }}" src="{{ url_for('run_file', run_id=result.id, name=result.files[key]) }}">
+      </picture></a>
+      <figcaption>{{ caption }}</figcaption>
+    </figure>
+    {% endfor %}
+  </div>
+</div>
+"""
+
 _STACK_RESULT = """
 <div class="card" id="result">
   <p id="verdict" class="verdict stack {{ result.verdict_class }}">{{ result.verdict }}</p>
@@ -478,35 +502,18 @@ _STACK_RESULT = """
   <p class="muted">Friction needed: the largest ratio of tangential to normal force while the contact stuck; a contact
     with μs slips when it needs more, and that slip is simulated.</p>
 </div>
-<div class="card">
-  <h2>Animation and plots</h2>
-  <div class="figures">
-    <figure>
-      <img id="animation" alt="animation of the stack of blocks" src="{{ url_for('run_file', run_id=result.id, name=result.files.animation) }}">
-      <figcaption>{% if result.animation_speed > 1.001 %}Played at {{ "%g"|format(result.animation_speed|round(2)) }}× real
-        time (the run is longer than a minute){% else %}Played in real time{% endif %}; every block drawn to scale where
-        the model puts it, the floor still (the picture moves with it). The header gives each block's rotation on what
-        it stands on.</figcaption>
-    </figure>
-    {% for key, element, alt, caption in [
-        ("response", "response-plot", "rotation and sliding of every block and the floor acceleration against time",
-         "Rotation φ of each block on what it stands on (°), its sliding along that face (mm) and the floor acceleration "
-         ~ "against time; one colour per block; a dashed line where a block overturns."),
-        ("energy", "energy-plot", "mechanical energy of the stack against time",
-         "Change of the stack's mechanical energy E − E₀ since the start (zero: the stack as it started, at rest), with "
-         ~ "the ledger W − D (the floor's work less friction and impact losses) dashed over it: the two coincide when "
-         ~ "the energy balance closes.")] %}
-    <figure>
-      <a href="{{ url_for('run_file', run_id=result.id, name=result.files[key]) }}" title="full size">
-      <picture>
-        <source media="(max-width: 640px)" srcset="{{ url_for('run_file', run_id=result.id, name=result.files[key ~ '_narrow']) }}">
-        <img id="{{ element }}" alt="{{ alt }}" src="{{ url_for('run_file', run_id=result.id, name=result.files[key]) }}">
-      </picture></a>
-      <figcaption>{{ caption }}</figcaption>
-    </figure>
-    {% endfor %}
-  </div>
-</div>
+{% set animation_alt = "animation of the stack of blocks" %}
+{% set animation_caption = "every block drawn to scale where the model puts it, the floor still (the picture moves "
+   ~ "with it). The header gives each block's rotation on what it stands on." %}
+{% set figures = [
+    ("response", "response-plot", "rotation and sliding of every block and the floor acceleration against time",
+     "Rotation φ of each block on what it stands on (°), its sliding along that face (mm) and the floor acceleration "
+     ~ "against time; one colour per block; a dashed line where a block overturns."),
+    ("energy", "energy-plot", "mechanical energy of the stack against time",
+     "Change of the stack's mechanical energy E − E₀ since the start (zero: the stack as it started, at rest), with "
+     ~ "the ledger W − D (the floor's work less friction and impact losses) dashed over it: the two coincide when "
+     ~ "the energy balance closes.")] %}
+{% include "result_figures.html" %}
 """
 
 _RESULT = """{% if result.kind == "stack" %}{% include "stack_result.html" %}{% else %}
@@ -517,34 +524,17 @@ _RESULT = """{% if result.kind == "stack" %}{% include "stack_result.html" %}{% 
   <ul class="warnings" id="warnings">{% for w in result.summary.warnings %}<li>{{ w }}</li>{% endfor %}</ul>
   {% endif %}
 </div>
-<div class="card">
-  <h2>Animation and plots</h2>
-  <div class="figures">
-    <figure>
-      <img id="animation" alt="animation of the statue" src="{{ url_for('run_file', run_id=result.id, name=result.files.animation) }}">
-      <figcaption>{% if result.animation_speed > 1.001 %}Played at {{ "%g"|format(result.animation_speed|round(2)) }}× real
-        time (the run is longer than a minute){% else %}Played in real time{% endif %}; the colour of the label tells
-        the regime (rest, rock, slide, slide-rock). The floor's ruler moves with the floor; the trace at the top
-        magnifies the sliding u (mm).</figcaption>
-    </figure>
-    {% for key, element, alt, caption in [
-        ("response", "response-plot", "rotation, sliding and floor acceleration against time",
-         "Rotation θ/α, sliding u and floor acceleration against time; the background shows the regime, ticks mark impacts."),
-        ("energy", "energy-plot", "mechanical energy against time",
-         "Mechanical energy T + V relative to the floor, with the energy ledger. Zero is the statue standing upright with "
-         ~ "everything at rest on the floor; the energy goes below zero only when the statue leans more than 2α "
-         ~ "(its centre of mass is then lower than when it stands), that is when it falls.")] %}
-    <figure>
-      <a href="{{ url_for('run_file', run_id=result.id, name=result.files[key]) }}" title="full size">
-      <picture>
-        {% if result.files.get(key ~ "_narrow") %}<source media="(max-width: 640px)" srcset="{{ url_for('run_file', run_id=result.id, name=result.files[key ~ '_narrow']) }}">{% endif %}
-        <img id="{{ element }}" alt="{{ alt }}" src="{{ url_for('run_file', run_id=result.id, name=result.files[key]) }}">
-      </picture></a>
-      <figcaption>{{ caption }}</figcaption>
-    </figure>
-    {% endfor %}
-  </div>
-</div>
+{% set animation_alt = "animation of the statue" %}
+{% set animation_caption = "the colour of the label tells the regime (rest, rock, slide, slide-rock). The floor's "
+   ~ "ruler moves with the floor; the trace at the top magnifies the sliding u (mm)." %}
+{% set figures = [
+    ("response", "response-plot", "rotation, sliding and floor acceleration against time",
+     "Rotation θ/α, sliding u and floor acceleration against time; the background shows the regime, ticks mark impacts."),
+    ("energy", "energy-plot", "mechanical energy against time",
+     "Mechanical energy T + V relative to the floor, with the energy ledger. Zero is the statue standing upright with "
+     ~ "everything at rest on the floor; the energy goes below zero only when the statue leans more than 2α "
+     ~ "(its centre of mass is then lower than when it stands), that is when it falls.")] %}
+{% include "result_figures.html" %}
 {% endif %}
 """
 
@@ -639,6 +629,7 @@ TEMPLATES = {
     "result.html": _RESULT,
     "stack_result.html": _STACK_RESULT,
     "summary_tables.html": _SUMMARY_TABLES,
+    "result_figures.html": _RESULT_FIGURES,
     "run.html": _RUN_PAGE,
     "sweep.html": _SWEEP,
 }
