@@ -87,7 +87,7 @@ def _new_axes(ax: Axes | None, figsize: tuple[float, float] = (6.4, 3.6)) -> Axe
     return fig.add_subplot()
 
 
-def _style(ax: Axes) -> None:
+def style_axes(ax: Axes) -> None:
     """Explicit styling (no rcParams changes: the caller's settings are left alone)."""
     ax.tick_params(labelsize=_TICK_SIZE)
     ax.grid(True, lw=0.4, color="0.85")
@@ -202,7 +202,7 @@ def plot_regimes(response, ax: Axes | None = None, *, legend: bool = True) -> Ax
     ax.set_ylim(0.0, 1.0)
     ax.set_yticks([])
     ax.set_xlabel("t (s)")
-    _style(ax)
+    style_axes(ax)
     ax.grid(False)
     for spine in ax.spines.values():
         spine.set_color("0.6")
@@ -291,7 +291,7 @@ def plot_response(response, axes: Sequence[Axes] | None = None, *, title: str | 
 
     for ax in (ax1, ax2, ax3):
         ax.set_xlim(t0, t_end)
-        _style(ax)
+        style_axes(ax)
     handles = _regime_handles()
     if imp.size:
         handles.append(Line2D([], [], ls="none", marker="|", color=COLORS["impact"], label="impact"))
@@ -338,7 +338,7 @@ def plot_energy(response, ax: Axes | None = None) -> Axes:
     ax.set_xlim(float(t[0]) if t.size else 0.0, max(_t_end(response), 1e-9))
     ax.set_xlabel("t (s)")
     ax.set_ylabel("mechanical energy (J)")
-    _style(ax)
+    style_axes(ax)
     return ax
 
 
@@ -462,7 +462,7 @@ def plot_spectrum(
         ax.legend(handles=handles, loc="lower left", bbox_to_anchor=(0.0, 1.02), ncol=2, fontsize=_LEGEND_SIZE,
                   frameon=False, borderaxespad=0.0)
     ax.spectrum_handles = handles  # type: ignore[attr-defined]
-    _style(ax)
+    style_axes(ax)
     return ax
 
 
@@ -580,7 +580,7 @@ def plot_fragility(
     if legend:
         ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.02), ncol=2, fontsize=_LEGEND_SIZE, frameon=False,
                   borderaxespad=0.0)
-    _style(ax)
+    style_axes(ax)
     return ax
 
 
@@ -753,7 +753,7 @@ def plot_design_chart(
     for a in (rot_ax, rate_ax, slide_ax):
         if tan_alpha is not None:
             a.axvline(tan_alpha, color="0.5", lw=0.8, ls=":", zorder=2)
-        _style(a)
+        style_axes(a)
     if tan_alpha is not None:
         handles.append(Line2D([], [], color="0.5", lw=0.8, ls=":", label=f"μs = tan α = {tan_alpha:.3g}"))
     if recommended is not None:

@@ -21,13 +21,12 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from ..io.output import _envelope
+from .plots import style_axes
 
 __all__ = ["ENERGY_LABEL", "block_color", "plot_stack_energy", "plot_stack_response"]
 
 #: Line colours of the blocks, from the floor up: darker shades of the animation's fills (repeated).
 LINE_COLORS = ("#7a6440", "#1f4e9c", "#b5512a", "#2d7d46", "#8a8a2a", "#7b3f98")
-_LABEL_SIZE = 9.0
-_TICK_SIZE = 8.0
 _LEGEND_SIZE = 7.5
 
 #: The energy axis: what zero means there.
@@ -37,14 +36,6 @@ ENERGY_LABEL = "E − E₀ (J);  0 = the stack as it started"
 def block_color(k: int) -> str:
     """The line colour of block ``k`` (0 = the one on the floor)."""
     return LINE_COLORS[k % len(LINE_COLORS)]
-
-
-def _style(ax: Axes) -> None:
-    ax.tick_params(labelsize=_TICK_SIZE)
-    ax.grid(True, lw=0.4, color="0.85")
-    ax.set_axisbelow(True)
-    ax.xaxis.label.set_size(_LABEL_SIZE)
-    ax.yaxis.label.set_size(_LABEL_SIZE)
 
 
 def _legend_above(ax: Axes, handles: list[Any], ncol: int) -> None:
@@ -122,7 +113,7 @@ def plot_stack_response(response: Any, axes: Sequence[Axes] | None = None, *, mo
     for ax in axes:
         if t.size:
             ax.set_xlim(float(t[0]), max(float(t[-1]), float(t[0]) + 1e-9))
-        _style(ax)
+        style_axes(ax)
     _legend_above(ax_phi, handles, legend_columns or min(len(handles), 6))
     return fig
 
@@ -162,5 +153,5 @@ def plot_stack_energy(response: Any, ax: Axes | None = None) -> Axes:
         ax.set_xlim(float(t[0]), max(float(t[-1]), float(t[0]) + 1e-9))
     ax.set_xlabel("t (s)")
     ax.set_ylabel(ENERGY_LABEL)
-    _style(ax)
+    style_axes(ax)
     return ax
