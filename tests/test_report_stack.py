@@ -14,7 +14,6 @@ import matplotlib
 
 matplotlib.use("Agg")
 
-import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
 from rocking.report import write_report  # noqa: E402
@@ -86,7 +85,7 @@ def _expected_checks(response) -> dict[str, str]:
     for name, b in zip(names, s["blocks"]):
         out[f"{name} stays upright (no overturn)"] = (
             FAIL if b["overturned"] else UNDETERMINED if (fell or undetermined) else PASS)
-    past_edge = s["status"] == "slid_past_edge" or bool(np.any(response.events[:, 2] == 5))  # 5: the edge guard
+    past_edge = s["status"] == "slid_past_edge" or any(b["past_edge_time"] is not None for b in s["blocks"])
     out["no block slid to the edge of the one below"] = (
         FAIL if past_edge else UNDETERMINED if undetermined else PASS)
     for f, interface in zip(s["interfaces"], response.stack.interfaces):

@@ -150,16 +150,6 @@ def _upright_check(response: Any, k: int) -> Check:
     return Check(name, peak, limit, PASS)
 
 
-def _edge_crossing(response: Any) -> tuple[int, float] | None:
-    """(block index, t) of the first time a block's corner reached the edge of the one below (the
-    engine's edge event; followed past it unless the run stopped there), or None."""
-    from ..stack.engine import G_EDGE
-
-    events = response.events
-    hits = [i for i in range(len(events)) if int(events[i, 2]) == G_EDGE]
-    return (int(events[hits[0], 1]), float(events[hits[0], 0])) if hits else None
-
-
 def _edge_check(response: Any) -> Check:
     stack = response.stack
     name, limit = "no block slid to the edge of the one below", "every corner stays on the face below"
@@ -169,9 +159,8 @@ def _edge_check(response: Any) -> Check:
                      f"t = {response.end_time:.2f} s", limit, FAIL, warning=(
                          f"{_capital(block_label(stack, edge))} slid to the edge of {_below(stack, edge)}: the run "
                          "stops there (stop_at_edge); treat it as falling off."))
-    crossing = _edge_crossing(response)
-    if crossing is not None:
-        k, t = crossing
+    if response.first_past_edge is not None:
+        t, k = response.first_past_edge
         return Check(name, f"{block_label(stack, k)} went past the edge of {_below(stack, k)} at t = {t:.2f} s",
                      limit, FAIL, warning=(
                          f"{_capital(block_label(stack, k))} slid past the edge of {_below(stack, k)} at t = {t:.2f} s "

@@ -140,12 +140,18 @@ class StackResponse:
             return (f"undetermined: {self.stack.names[k]} slid to the edge of {below} at t = {self.end_time:.3f} s; "
                     "the model stops there (treat it as falling off)")
         text = verdict_text(self.status, None, self.end_time)
-        past = [(b["past_edge_time"], k) for k, b in enumerate(self.blocks) if b.get("past_edge_time") is not None]
-        if past:
+        if self.first_past_edge is not None:
             # a near miss: no fall, but a block's corner went past the edge of what it stands on
-            t, k = min(past)
+            t, k = self.first_past_edge
             text += f"; {self.stack.names[k]} went past the edge of {self.stack.names[k - 1]} at t = {t:.3f} s"
         return text
+
+    @property
+    def first_past_edge(self) -> tuple[float, int] | None:
+        """(t, block index) of the first time a corner of a block reached the edge of the block
+        below (it went past it, or the run stopped there with ``stop_at_edge``), or None."""
+        past = [(b["past_edge_time"], k) for k, b in enumerate(self.blocks) if b["past_edge_time"] is not None]
+        return min(past) if past else None
 
     def summary(self) -> dict:
         """``blocks`` (from the floor up) and ``interfaces`` (floor first); the top-level keys
