@@ -440,7 +440,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 zv = y[:nz].copy()
                 zdv = y[nz:2 * nz].copy()
                 code = _select_ahead(P, ends, anchor, geo, t, zv, zdv, loc, gravity, extra, nstate, tstate, -1, 0,
-                                     tol_force, tol_rate, x_sel, lam_sel)
+                                     tol_force, tol_rate, x_sel, lam_sel, ws)
                 if code == SELECT_HELD:
                     code = SELECT_OK
                 if code != SELECT_OK:
@@ -494,7 +494,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 status, d_impact, n_ev = _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k_ev,
                                                        first - k_ev * N_GUARD_SLOTS, tol_force, tol_rate,
                                                        rest_velocity, extra, x_sel, lam_sel, events, n_ev, d_impact,
-                                                       summ, held, stop_at_edge)
+                                                       summ, held, stop_at_edge, ws)
                 _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
                 if n_out < cap:
                     _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, n_out, ws)
@@ -623,7 +623,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             slot = first - k_ev * N_GUARD_SLOTS
             status, d_impact, n_ev = _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k_ev,
                                                    slot, tol_force, tol_rate, rest_velocity, extra, x_sel, lam_sel,
-                                                   events, n_ev, d_impact, summ, held, stop_at_edge)
+                                                   events, n_ev, d_impact, summ, held, stop_at_edge, ws)
             if n_ev >= max_events and status == STATUS_COMPLETED:
                 status = STATUS_MAX_EVENTS
             if t == t_last_event:
@@ -874,7 +874,7 @@ def _all_stuck(nstate, tstate):
 
 @njit(cache=True)
 def _select_ahead(P, ends, anchor, geo, t, z, zd, loc, gravity, extra, nstate, tstate, veto_k, veto_kind, tol_force,
-                  tol_rate, x_sel, lam_sel):
+                  tol_rate, x_sel, lam_sel, ws):
     """The mode after an event, decided a moment later (LOOKAHEAD): where the event's guard just
     reached zero, the branches tie (a normal force of zero holds as a closed contact and as an
     open one). The floor motion and the state a moment on, continued in the mode that ends, break
@@ -891,7 +891,7 @@ def _select_ahead(P, ends, anchor, geo, t, z, zd, loc, gravity, extra, nstate, t
     y[2 * nz + 1] = 0.0
     dy = np.empty(2 * nz + 2)
     lam = np.zeros(nz)
-    evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, dy, lam, new_workspace(n))
+    evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, dy, lam, ws)
     za = z + dt * dy[:nz]
     zda = zd + dt * dy[nz:2 * nz]
     for k in range(n):
@@ -958,7 +958,7 @@ def _slide_direction(ends, anchor, k, zd, sigma):
 
 @njit(cache=True)
 def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, slot, tol_force, tol_rate,
-                  rest_velocity, extra, x_sel, lam_sel, events, n_ev, d_impact, summ, held, stop_at_edge):
+                  rest_velocity, extra, x_sel, lam_sel, events, n_ev, d_impact, summ, held, stop_at_edge, ws):
     """Apply the event of guard ``slot`` on interface k at time t (y is the state there).
     Returns (status, impact dissipation so far, number of events)."""
     n = P.shape[0]
@@ -1091,7 +1091,7 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
         if geo[j] == FLAT:
             refresh_ends(P, ends, anchor, j, z, zd, _slide_direction(ends, anchor, j, zd, tstate[j]))
     code = _select_ahead(P, ends, anchor, geo, t, z, zd, loc, gravity, extra, nstate, tstate, veto_k, veto_kind,
-                         tol_force, tol_rate, x_sel, lam_sel)
+                         tol_force, tol_rate, x_sel, lam_sel, ws)
     for j in range(nz):
         y[j] = z[j]
         y[nz + j] = zd[j]
