@@ -13,7 +13,8 @@ True
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
+from typing import Any
 from dataclasses import dataclass
 
 import numpy as np
@@ -140,18 +141,17 @@ class StackResponse:
             return (f"undetermined: {self.stack.names[k]} slid to the edge of {below} at t = {self.end_time:.3f} s; "
                     "the model stops there (treat it as falling off)")
         text = verdict_text(self.status, None, self.end_time)
-        if self.first_past_edge is not None:
-            # a near miss: no fall, but a block's corner went past the edge of what it stands on
-            t, k = self.first_past_edge
+        near_miss = first_past_edge(self.blocks)
+        if near_miss is not None:
+            # no fall, but a block's corner went past the edge of what it stands on
+            t, k = near_miss
             text += f"; {self.stack.names[k]} went past the edge of {self.stack.names[k - 1]} at t = {t:.3f} s"
         return text
 
     @property
     def first_past_edge(self) -> tuple[float, int] | None:
-        """(t, block index) of the first time a corner of a block reached the edge of the block
-        below (it went past it, or the run stopped there with ``stop_at_edge``), or None."""
-        past = [(b["past_edge_time"], k) for k, b in enumerate(self.blocks) if b["past_edge_time"] is not None]
-        return min(past) if past else None
+        """:func:`first_past_edge` of this run's blocks."""
+        return first_past_edge(self.blocks)
 
     def summary(self) -> dict:
         """``blocks`` (from the floor up) and ``interfaces`` (floor first); the top-level keys
@@ -217,6 +217,15 @@ def simulate_stack(
         options.max_step, save_dt, int(options.max_events), options.rest_velocity, bool(options.stop_at_edge),
     )
     return _response(stack, STATUS_NAMES[status], t_stop, samples, events, summ, e0)
+
+
+def first_past_edge(blocks: Sequence[Mapping[str, Any]]) -> tuple[float, int] | None:
+    """(t, block index) of the first time a corner of a block reached the edge of the block below
+    (it went past it, or the run stopped there with ``stop_at_edge``), or None; ``blocks`` as in
+    :attr:`StackResponse.blocks`. (A function, so that the studies' unpacked summaries get the same
+    verdict.)"""
+    past = [(b["past_edge_time"], k) for k, b in enumerate(blocks) if b["past_edge_time"] is not None]
+    return min(past) if past else None
 
 
 def _response(stack, status, t_stop, samples, events, summ, e0) -> StackResponse:
