@@ -516,7 +516,7 @@ def test_a_block_pushed_partly_past_the_edge_stops_there_overhanging():
 
 
 def test_a_mode_solve_satisfies_the_equations_of_that_mode():
-    """solve_mode solves only the free coordinates' rows (docs/theory/stack.md): check the full
+    """solve_mode_in solves only the free coordinates' rows (docs/theory/stack.md): check the full
     equations M z̈ = f + Λ at random M (symmetric positive definite), f and every mode of a
     three-block stack — z̈ = 0 where frozen, Λ = 0 on free coordinates except a slipping a, where
     Λ_a = −μk σ Λ_d — to rounding."""
@@ -541,7 +541,9 @@ def test_a_mode_solve_satisfies_the_equations_of_that_mode():
             if np.any((nstate == modes.OPEN) & (tstate != 0)):
                 continue
             x, lam = np.full(nz, np.nan), np.full(nz, np.nan)
-            assert modes.solve_mode(M, f, P, nstate, tstate, x, lam)
+            scratch = (np.zeros(nz, dtype=bool), np.empty(nz, dtype=np.int64), np.empty(nz, dtype=np.int64),
+                       np.empty((nz, nz)), np.empty(nz))
+            assert modes.solve_mode_in(M, f, P, nstate, tstate, x, lam, *scratch)
             frozen = np.zeros(nz, dtype=bool)
             modes.frozen_set(nstate, tstate, P, frozen)
             assert np.all(x[frozen] == 0.0)

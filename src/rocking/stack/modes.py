@@ -79,15 +79,6 @@ def frozen_set(nstate, tstate, P, frozen):
         frozen[i + 2] = closed
 
 
-@njit(cache=True)
-def solve_mode(M, f, P, nstate, tstate, x_out, lam_out):
-    """:func:`solve_mode_in` with its scratch arrays made here (for calls outside the step loop)."""
-    nz = f.shape[0]
-    return solve_mode_in(M, f, P, nstate, tstate, x_out, lam_out, np.zeros(nz, dtype=np.bool_),
-                         np.empty(nz, dtype=np.int64), np.empty(nz, dtype=np.int64), np.empty((nz, nz)),
-                         np.empty(nz))
-
-
 @njit(cache=True, _nrt=False)
 def solve_mode_in(M, f, P, nstate, tstate, x_out, lam_out, frozen, free, row_of, K, b):
     """Solve the mode's equations M z̈ = f + Λ: x_out = z̈ (or ż⁺), lam_out = Λ on frozen
