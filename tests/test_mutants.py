@@ -1365,3 +1365,207 @@ def test_a_block_whose_tan_alpha_equals_its_friction_slides_upright_from_the_com
         (pytest.approx(1.5 + u_dot / mu_k_g, abs=1e-9), EventKind.STOP, Regime.SLIDE, Regime.REST),
     ]
     assert r.peak_rotation == 0.0 and r.summary()["first_rocking_time"] is None
+
+
+# ------------------------------------------------------------------------------------------------
+# models/dynamics.py: the forces and the power of the floor along a run
+# ------------------------------------------------------------------------------------------------
+
+_TWO_COMPONENT_CASES = {
+    # A slender statue that rocks on a held pedestal, then on a sliding one (REST, ROCK, SLIDE_ROCK).
+    "rocks": (rk.Statue(width=0.4, height=2.0, mass=3.0, restitution=0.85),
+              rk.Pedestal(mass=2.0, friction=rk.Friction(static=0.45, kinetic=0.35), width=0.6, height=0.8),
+              (1.5, 5.5)),
+    # A squat statue that never rocks: the stack slides as one body (REST, SLIDE).
+    "slides": (rk.Statue(width=0.8, height=1.0, mass=3.0),
+               rk.Pedestal(mass=2.0, friction=rk.Friction(static=0.3, kinetic=0.25), width=0.9, height=0.5),
+               (1.5, 4.0)),
+}
+
+
+def _two_component_run(case):
+    """A 3 kg statue on a 2 kg pedestal (masses ≠ 1, so that a `·M` written `/M` shows) under a
+    record-like motion with a vertical component: 1.2 Hz horizontal, weaker then stronger, and a
+    2 m/s², 3 Hz vertical, sampled every 0.01 s, for 4 s, then 2 s of stillness."""
+    from rocking.excitation.record import GroundMotion
+
+    statue, pedestal, (weak, strong) = _TWO_COMPONENT_CASES[case]
+    t = np.round(np.arange(0.0, 6.0, 0.01), 10)
+    horizontal = np.where(t < 2.5, weak, strong) * np.sin(2 * np.pi * 1.2 * t) * (t < 4.0)
+    vertical = 2.0 * np.sin(2 * np.pi * 3.0 * t) * (t < 4.0)
+    motion = GroundMotion(time=t, values=horizontal, vertical=vertical)
+    system = rk.System(statue=statue, pedestal=pedestal)
+    return rk.simulate(system, motion, options=rk.Options(gravity=9.81, save_dt=1e-3)), motion
+
+
+@pytest.mark.parametrize(("case", "regimes"), [("rocks", {0, 1, 3}), ("slides", {0, 2})])
+def test_contact_forces_along_a_run_match_the_sympy_derivation(case, regimes):
+    """`Response.contact_forces()` (the floor's F and N, the force on the statue's base, the floor
+    pressure centre x_N under the pedestal) at every saved sample, against the sympy derivation
+    (`tests/oracles/lagrange.py`: the regime's accelerations and forces; x_N by the pedestal's
+    moment balance), to 1e-9 relative: both evaluate closed forms at the same state, so they
+    differ by rounding. Kills dynamics.py:71 (F = M(a − ü) for a sliding statue at rest), the
+    six mutants of `pressure_centre` (dynamics.py:159, 162: `s/B`, `B/Py`, `·n`, `1.5·h1`,
+    `a − ü`, and `n <= 1` which leaves x_N undefined under a pedestal whose normal force is below
+    1 N... here 49 N, so that one is killed by the light case below)."""
+    from oracles import lagrange
+    from oracles.energy import lagrange_params
+
+    r, motion = _two_component_run(case)
+    assert set(np.unique(r.regime)) == regimes
+    forces = r.contact_forces()
+    params = lagrange_params(r.system, 9.81)
+    a_g, a_v = motion.acceleration(r.t), motion.vertical_acceleration(r.t)
+    names = {0: "stick-rest", 1: "stick-rock", 2: "slide-rest", 3: "slide-rock"}
+    checked = 0
+    for i in range(r.t.size):
+        code = int(r.regime[i])
+        sigma = int(np.sign(r.u_dot[i])) if code & 2 else None
+        s = int(np.sign(r.theta[i]) or np.sign(r.theta_dot[i])) if code & 1 else None
+        if sigma == 0 or s == 0:
+            continue  # the instant a slide or a rocking starts: its direction is not in the sample
+        udd, _, n, f, px, py = lagrange.accelerations(names[code], params, r.state[i], a_g[i], a_v[i], s=s, sigma=sigma)
+        scale = params["g"] * (params["m1"] + params["m2"])
+        for key, value in (("F", f), ("N", n), ("Px", px), ("Py", py)):
+            assert forces[key][i] == pytest.approx(value, rel=1e-9, abs=1e-12 * scale), (key, r.t[i])
+        if s:
+            x_n = lagrange.pedestal_center_of_pressure(params, r.system.pedestal.height, s, px, py, n, a_g[i] + udd)
+            assert forces["x_N"][i] == pytest.approx(x_n, rel=1e-9, abs=1e-12), r.t[i]
+        else:
+            assert math.isnan(forces["x_N"][i])
+        checked += 1
+    assert checked > 0.9 * r.t.size
+
+
+@pytest.mark.parametrize("case", ["rocks", "slides"])
+def test_energy_ledger_under_vertical_motion_matches_the_one_computed_from_the_samples(case):
+    """The solver's input work and friction dissipation against the ledger computed here from the
+    saved samples with the sympy derivation's energy and power (`tests/oracles/energy.py`), under
+    a floor that also moves vertically, with masses ≠ 1: to 1e-7 relative. The ledger's
+    quadrature errs by ~1e-10 of the energies on 1 ms samples, but a stretch of fewer than four
+    samples is integrated by a trapezoid: the last slide of "slides" ends 0.66 ms after a record
+    sample, and that trapezoid errs by 1.6e-8 of the energies (measured). Kills dynamics.py:91
+    (P_in = −a·u̇/M for a statue at rest) and dynamics.py:94 (the vertical power of a rocking
+    statue with its sign flipped)."""
+    from oracles import energy
+
+    r, motion = _two_component_run(case)
+    led = energy.ledger(r.t, r.state, r.regime, energy.lagrange_params(r.system, 9.81), motion.acceleration,
+                        motion.vertical_acceleration, motion.breakpoints)
+    assert np.max(np.abs(led.residual)) <= 1e-7 * led.scale
+    e = r.energy
+    assert led.friction[-1] > 0.01 * led.scale
+    np.testing.assert_allclose([e["input_work"], e["friction_dissipation"], e["impact_dissipation"]],
+                               [led.input_work[-1], led.friction[-1], led.jumps[-1]], rtol=1e-7, atol=1e-12 * led.scale)
+
+
+def test_floor_pressure_centre_under_a_light_pedestal_is_defined():
+    """x_N is undefined only where the floor's normal force is not positive. A 50 g statue on a
+    20 g pedestal has N ≈ 0.7 N: dynamics.py:159 (`n <= 1.0`) reports NaN there, and the uplift
+    check goes blind. The same pressure centre as the sympy moment balance, to 1e-9."""
+    from oracles import lagrange
+    from oracles.energy import lagrange_params
+
+    statue = rk.Statue(width=0.04, height=0.2, mass=0.05)
+    pedestal = rk.Pedestal(mass=0.02, friction=rk.Friction(static=2.0, kinetic=2.0), width=0.06, height=0.05)
+    r = rk.simulate(rk.System(statue=statue, pedestal=pedestal), rk.Harmonic(amplitude=3.0, frequency=2.0, cycles=2),
+                    options=rk.Options(gravity=9.81))
+    forces = r.contact_forces()
+    rocking = np.flatnonzero((r.regime == 1) & ((r.theta != 0) | (r.theta_dot != 0)))
+    assert rocking.size > 10 and np.all(forces["N"][rocking] < 1.0)
+    params = lagrange_params(r.system, 9.81)
+    for i in rocking[:: max(1, rocking.size // 20)]:
+        s = int(np.sign(r.theta[i]) or np.sign(r.theta_dot[i]))
+        udd, _, n, _, px, py = lagrange.accelerations("stick-rock", params, r.state[i], r.floor_acceleration[i], 0.0, s=s)
+        x_n = lagrange.pedestal_center_of_pressure(params, 0.05, s, px, py, n, r.floor_acceleration[i] + udd)
+        assert forces["x_N"][i] == pytest.approx(x_n, rel=1e-9, abs=1e-12)
+
+
+# ------------------------------------------------------------------------------------------------
+# excitation/signal.py: the compiled evaluator at the ends of its domain, and the band exits
+# ------------------------------------------------------------------------------------------------
+
+_ANALYTIC_MOTIONS = {
+    "harmonic cos": rk.Harmonic(amplitude=2.0, frequency=1.5, cycles=2),
+    "harmonic sin": rk.Harmonic(amplitude=2.0, frequency=1.5, cycles=1.25, form="sin"),
+    "sine pulse": rk.SinePulse(amplitude=2.0, frequency=2.0, phase=0.4),
+    "cosine pulse": rk.CosinePulse(amplitude=2.0, frequency=2.0),
+    "rectangle": rk.RectanglePulse(amplitude=2.0, width=0.3),
+    "Ricker": rk.RickerPulse(amplitude=2.0, frequency=2.0, center=0.1),  # cut off while still 0.28 m/s²
+    "ramp": rk.Ramp(rate=1.5, end=0.8),
+}
+
+
+@pytest.mark.parametrize("name", list(_ANALYTIC_MOTIONS))
+def test_the_local_form_of_an_analytic_signal_holds_at_both_ends_of_the_motion(name):
+    """`localise` on the side of t = 0 and of t = t_end gives the formula `evaluate` gives there
+    (a motion is on over its closed interval, as `acceleration` says: see the pulse tests above).
+    Kills signal.py:78 `piece <= 0` and `piece >= params[3]` (zero at the start, or at the end)."""
+    from rocking.excitation.signal import evaluate, local_value, localise
+
+    motion = _ANALYTIC_MOTIONS[name]
+    sig = motion.signal()
+    t_end = float(sig.params[3])
+    assert t_end == pytest.approx(motion.duration, rel=1e-15)
+    for t in (0.0, t_end):
+        expected = float(motion.acceleration(np.array([t]))[0])
+        if name == "rectangle" and t == t_end:
+            # The one motion that jumps at its end. `acceleration` is 0 from t_d on; the compiled
+            # side with `piece = t_d` takes the pulse's side of the jump. The solver never asks
+            # (its `piece` is strictly inside a step, and t_d is a breakpoint), so both hold.
+            expected = 2.0
+        assert evaluate(sig.kind, sig.params, sig.time, sig.values, t, t) == pytest.approx(expected, rel=1e-14, abs=1e-15)
+        loc = localise(sig.kind, sig.params, sig.time, sig.values, t)
+        assert local_value(loc, 0, t) == pytest.approx(expected, rel=1e-14, abs=1e-15), t
+    # Not a vacuous check: each motion is clearly non-zero at one end at least.
+    assert max(abs(float(v)) for v in motion.acceleration(np.array([0.0, t_end]))) > 0.1
+
+
+def test_a_sampled_signal_at_its_last_sample_is_its_last_value():
+    """At the last sample time, searchsorted lands past the last interval; both evaluators step
+    back to it. Kills signal.py:38 (`i = n + 2`), :74 (`i >= n + 1`, `i > n − 1`): each reads
+    past the end of the arrays."""
+    from rocking.excitation.signal import evaluate, local_value, localise
+
+    t = np.array([0.0, 0.01, 0.02, 0.03])
+    values = np.array([0.0, 1.0, -2.0, 3.0])
+    from rocking.excitation.record import GroundMotion
+
+    sig = GroundMotion(time=t, values=values).signal()
+    assert evaluate(sig.kind, sig.params, sig.time, sig.values, 0.03, 0.03) == 3.0
+    loc = localise(sig.kind, sig.params, sig.time, sig.values, 0.03)
+    assert loc[0] == 1.0 and loc[1] == -2.0 and loc[3] == 0.02
+    assert loc[2] == pytest.approx(500.0, rel=1e-14)
+    assert local_value(loc, 0, 0.03) == pytest.approx(3.0, rel=1e-15)
+
+
+def test_cosine_band_exit_when_the_crest_only_touches_the_band_edge():
+    """A·cos that reaches the edge of the band only at its crest (A = hi, or −A = lo) still
+    leaves the band there (the band is open: strictly inside). The exit is the crest, short by
+    the 1e-6 rad phase margin. Kills signal.py:124 (`A <= hi and …`, which says it never
+    leaves) and :137 (`−A < lo`, which misses the trough)."""
+    from rocking.excitation.signal import cosine_band_exit
+
+    omega = 2.0 * math.pi
+    # Phase π/2 at t = 0: the crest comes at ψ = 2π (t = 0.75 s), the trough at ψ = π (0.25 s).
+    crest = cosine_band_exit(2.0, omega, 0.5 * math.pi, 0.0, 10.0, -5.0, 2.0)
+    assert crest == pytest.approx(0.75 - 1e-6 / omega, abs=1e-12)
+    trough = cosine_band_exit(2.0, omega, 0.5 * math.pi, 0.0, 10.0, -2.0, 5.0)
+    assert trough == pytest.approx(0.25 - 1e-6 / omega, abs=1e-12)
+    assert cosine_band_exit(2.0, omega, 0.5 * math.pi, 0.0, 10.0, -2.0 - 1e-9, 2.0 + 1e-9) == 10.0
+
+
+def test_cosine_band_exit_exactly_on_the_exit_phase_is_now():
+    """Started exactly on the phase where the band is left upwards (ψ = 2π − β with
+    β = arccos(hi/A)) while A·cos ψ rounds to just below hi: the exit is now. Kills
+    signal.py:140 (`while start <= r`), which adds a whole period and misses it."""
+    from rocking.excitation.signal import cosine_band_exit
+
+    found = 0
+    for hi in np.linspace(0.1, 0.9, 2001):
+        beta = math.acos(hi)
+        if not math.cos(-beta) < hi:
+            continue
+        found += 1
+        assert cosine_band_exit(1.0, 1.0, -beta, 0.0, 100.0, -1.5, hi) == 0.0, hi
+    assert found > 10
