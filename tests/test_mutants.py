@@ -1446,7 +1446,7 @@ def test_energy_ledger_under_vertical_motion_matches_the_one_computed_from_the_s
     samples is integrated by a trapezoid: the last slide of "slides" ends 0.66 ms after a record
     sample, and that trapezoid errs by 1.6e-8 of the energies (measured). Kills dynamics.py:91
     (P_in = −a·u̇/M for a statue at rest) and dynamics.py:94 (the vertical power of a rocking
-    statue with its sign flipped)."""
+    statue with its sign flipped), and dynamics.py:169 below."""
     from oracles import energy
 
     r, motion = _two_component_run(case)
@@ -1457,6 +1457,26 @@ def test_energy_ledger_under_vertical_motion_matches_the_one_computed_from_the_s
     assert led.friction[-1] > 0.01 * led.scale
     np.testing.assert_allclose([e["input_work"], e["friction_dissipation"], e["impact_dissipation"]],
                                [led.input_work[-1], led.friction[-1], led.jumps[-1]], rtol=1e-7, atol=1e-12 * led.scale)
+    # and the solver's own running balance closes (1e-11 measured): kills dynamics.py:169
+    # (the kinetic energy 0.5·u̇²/M of a statue at rest on a sliding pedestal)
+    assert e["relative_balance_error"] < 1e-9
+
+
+def test_floor_pressure_centre_without_a_normal_force_is_undefined():
+    """x_N = moment / N is undefined, NaN, where the floor's normal force is not positive; with
+    N = 0 exactly, dynamics.py:159 `n < 0.0` divides by zero (and raises, under numba's
+    Python error model). The uplift check and `contact_forces()` rely on the NaN."""
+    from rocking.models.dynamics import pressure_centre
+    from rocking.models.parameters import pack
+
+    statue = rk.Statue(width=0.4, height=2.0, mass=3.0)
+    pedestal = rk.Pedestal(mass=2.0, friction=rk.Friction(static=0.5), width=0.6, height=0.8)
+    p = pack(rk.System(statue=statue, pedestal=pedestal), gravity=9.81, normal_force="full", impact="coulomb",
+             rest_velocity=1e-6)
+    assert math.isnan(pressure_centre(p, 1, 2.0, 0.0, 5.0, 20.0, 0.0))
+    assert math.isnan(pressure_centre(p, -1, 2.0, 0.0, 5.0, 20.0, -3.0))
+    assert pressure_centre(p, 1, 2.0, 0.0, 5.0, 20.0, 49.0) == pytest.approx(
+        (0.2 * 20.0 - 0.8 * 5.0 - 0.5 * 0.8 * 2.0 * 2.0) / 49.0, rel=1e-14)
 
 
 def test_floor_pressure_centre_under_a_light_pedestal_is_defined():
@@ -1523,12 +1543,12 @@ def test_the_local_form_of_an_analytic_signal_holds_at_both_ends_of_the_motion(n
 
 def test_a_sampled_signal_at_its_last_sample_is_its_last_value():
     """At the last sample time, searchsorted lands past the last interval; both evaluators step
-    back to it. Kills signal.py:38 (`i = n + 2`), :74 (`i >= n + 1`, `i > n − 1`): each reads
+    back to it; at the first, they take the first interval. Kills signal.py:38 (`i = n + 2`), :74 (`i >= n + 1`, `i > n − 1`): each reads
     past the end of the arrays."""
     from rocking.excitation.signal import evaluate, local_value, localise
 
     t = np.array([0.0, 0.01, 0.02, 0.03])
-    values = np.array([0.0, 1.0, -2.0, 3.0])
+    values = np.array([0.5, 1.0, -2.0, 3.0])
     from rocking.excitation.record import GroundMotion
 
     sig = GroundMotion(time=t, values=values).signal()
@@ -1537,6 +1557,9 @@ def test_a_sampled_signal_at_its_last_sample_is_its_last_value():
     assert loc[0] == 1.0 and loc[1] == -2.0 and loc[3] == 0.02
     assert loc[2] == pytest.approx(500.0, rel=1e-14)
     assert local_value(loc, 0, 0.03) == pytest.approx(3.0, rel=1e-15)
+    # and at the first sample, the first interval (signal.py:71 `piece <= times[0]` gives 0)
+    first = localise(sig.kind, sig.params, sig.time, sig.values, 0.0)
+    assert local_value(first, 0, 0.0) == 0.5 and evaluate(sig.kind, sig.params, sig.time, sig.values, 0.0, 0.0) == 0.5
 
 
 def test_cosine_band_exit_when_the_crest_only_touches_the_band_edge():
@@ -1555,17 +1578,37 @@ def test_cosine_band_exit_when_the_crest_only_touches_the_band_edge():
     assert cosine_band_exit(2.0, omega, 0.5 * math.pi, 0.0, 10.0, -2.0 - 1e-9, 2.0 + 1e-9) == 10.0
 
 
-def test_cosine_band_exit_exactly_on_the_exit_phase_is_now():
-    """Started exactly on the phase where the band is left upwards (ψ = 2π − β with
-    β = arccos(hi/A)) while A·cos ψ rounds to just below hi: the exit is now. Kills
-    signal.py:140 (`while start <= r`), which adds a whole period and misses it."""
+def test_cosine_band_exit_starting_on_the_band_edge_is_now():
+    """A·cos starting exactly on the lower edge (rising through it) is not strictly inside the
+    band: the exit is now. Kills signal.py:122 (`lo <= now`), which then waits for the next
+    downward exit, a period later."""
     from rocking.excitation.signal import cosine_band_exit
 
-    found = 0
-    for hi in np.linspace(0.1, 0.9, 2001):
-        beta = math.acos(hi)
-        if not math.cos(-beta) < hi:
-            continue
-        found += 1
-        assert cosine_band_exit(1.0, 1.0, -beta, 0.0, 100.0, -1.5, hi) == 0.0, hi
-    assert found > 10
+    lo = 2.0 * math.cos(4.0)  # at ψ = 4 rad, 2·cos ψ is rising (sin 4 < 0)
+    assert cosine_band_exit(2.0, 1.0, 4.0, 0.0, 100.0, lo, 5.0) == 0.0
+    hi = 2.0 * math.cos(1.0)  # falling through the upper edge
+    assert cosine_band_exit(2.0, 1.0, 1.0, 0.0, 100.0, -5.0, hi) == 0.0
+
+
+def test_cosine_band_exit_exactly_on_the_exit_phase_is_now():
+    """Started exactly on the phase where the band is left (upwards: ψ = 2π − β with
+    β = arccos(hi/A); downwards: ψ = γ with γ = arccos(lo/A)) while A·cos ψ rounds to just inside
+    the band: the exit is now, not a period later. Kills signal.py:140 (`while start <= r` in the
+    downward branch), and its twin in the upward branch. β, γ and the cosine are computed by
+    compiled code, as in the function, so that the tie is exact to the bit."""
+    from numba import njit
+
+    from rocking.excitation.signal import cosine_band_exit
+
+    acos, cos = njit(lambda x: math.acos(x)), njit(lambda x: math.cos(x))
+    up = down = 0
+    for edge in np.linspace(0.1, 0.9, 2001):
+        beta = acos(edge)
+        if cos(-beta) < edge:  # upper edge hi = edge, at ψ = −β ≡ 2π − β
+            up += 1
+            assert cosine_band_exit(1.0, 1.0, -beta, 0.0, 100.0, -1.5, edge) == 0.0, edge
+        gamma = acos(-edge)
+        if cos(gamma) > -edge:  # lower edge lo = −edge, at ψ = γ
+            down += 1
+            assert cosine_band_exit(1.0, 1.0, gamma, 0.0, 100.0, -edge, 1.5) == 0.0, edge
+    assert up > 10 and down > 10
