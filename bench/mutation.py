@@ -531,10 +531,14 @@ def find_item(work: Work, job: str):
     raise SystemExit(f"no mutant {job} in {work.sessions}")
 
 
-def try_mutant(work: Work, job: str, tests: list[str]) -> int:
+def try_mutant(work: Work, job: str, tests: list[str], current: bool = False) -> int:
     """Apply one mutant and run the given tests (taken from the repository, where a new test is
     written) in a throw-away copy of the copy, with an empty numba cache: a session may be
-    running in the main copy meanwhile. Returns pytest's exit code (0: the mutant survives)."""
+    running in the main copy meanwhile. Returns pytest's exit code (0: the mutant survives).
+
+    ``current``: apply it to the repository's source as it is now instead of the copy's (to
+    re-check a survivor after a fix elsewhere, without dropping the sessions). The mutated module
+    itself must not have changed since the copy, or the mutant's position would be wrong."""
     from cosmic_ray.mutating import apply_mutation
     from cosmic_ray.plugins import get_operator
 
@@ -542,7 +546,13 @@ def try_mutant(work: Work, job: str, tests: list[str]) -> int:
     tree, cache = work.root / "try-tree", work.root / "numba-try"
     for p in (tree, cache):
         shutil.rmtree(p, ignore_errors=True)
-    shutil.copytree(work.pristine, tree / "src")
+    if current:
+        relative = Path("rocking") / module
+        if (REPO / "src" / relative).read_bytes() != (work.pristine / relative).read_bytes():
+            raise SystemExit(f"{module} has changed since the copy: its mutants cannot be placed on the current source")
+        shutil.copytree(REPO / "src", tree / "src", ignore=shutil.ignore_patterns("__pycache__"))
+    else:
+        shutil.copytree(work.pristine, tree / "src")
     shutil.copytree(work.tree / "tests", tree / "tests")
     shutil.copy2(work.tree / "pyproject.toml", tree)
     args = []
@@ -620,6 +630,8 @@ def main(argv=None) -> int:
     p = sub.add_parser("try", help="apply one mutant in the copy and run the given tests on it")
     p.add_argument("job")
     p.add_argument("tests", nargs="+", help="test files or node ids, relative to the repository")
+    p.add_argument("--current", action="store_true",
+                   help="mutate the repository's current source, not the copy's (the module must be unchanged)")
     p = sub.add_parser("deps", help="which compiled modules a mutant of MODULE recompiles")
     p.add_argument("module")
     p = sub.add_parser("_test", help=argparse.SUPPRESS)
@@ -692,7 +704,7 @@ def main(argv=None) -> int:
             print(result.test_outcome, (result.output or "")[-2000:])
         return 0
     if args.cmd == "try":
-        return 1 if try_mutant(work, args.job, args.tests) == 0 else 0
+        return 1 if try_mutant(work, args.job, args.tests, args.current) == 0 else 0
     return 2
 
 
