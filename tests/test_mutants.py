@@ -1553,6 +1553,10 @@ def test_a_sampled_signal_at_its_last_sample_is_its_last_value():
 
     sig = GroundMotion(time=t, values=values).signal()
     assert evaluate(sig.kind, sig.params, sig.time, sig.values, 0.03, 0.03) == 3.0
+    # the side of the last sample is the last interval, wherever t is (signal.py:37, where
+    # `i >= n + 1` or `i > n − 1` take interval n − 1, past the end, and get t = 0.03 right only
+    # because its weight is 0 there)
+    assert evaluate(sig.kind, sig.params, sig.time, sig.values, 0.025, 0.03) == pytest.approx(0.5, rel=1e-14)
     loc = localise(sig.kind, sig.params, sig.time, sig.values, 0.03)
     assert loc[0] == 1.0 and loc[1] == -2.0 and loc[3] == 0.02
     assert loc[2] == pytest.approx(500.0, rel=1e-14)
