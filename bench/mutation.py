@@ -92,6 +92,15 @@ MODULES: dict[str, list[str]] = {
     "solver/signals.py": ["test_mutants.py", "test_interrupts.py"],
     "solver/warmup.py": ["test_install.py", "test_cli.py"],
     "solver/__init__.py": ["test_install.py", "test_single_block_rocking.py"],
+    # The stack engine (issue 11): its own tests first, then the cross-checks against the
+    # two-body solver and the Moreau–Jean solver, then the studies that read its summaries.
+    "stack/kinematics.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
+    "stack/lcp.py": ["test_stack_engine.py", "test_stack_timestepping.py", "test_stack_crosscheck.py"],
+    "stack/modes.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
+    "stack/engine.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
+    "stack/model.py": ["test_stack_config.py", "test_stack_engine.py", "test_input_errors.py"],
+    "stack/simulate.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_design_stack.py", "test_report_stack.py"],
+    "stack/timestepping.py": ["test_stack_timestepping.py"],
 }
 
 # One meaningful mutant per site, as mutmut makes, instead of cosmic-ray's every-operator-to-every-
@@ -590,7 +599,8 @@ def _kept(mutation, line: str) -> bool:
 def plan(work: Work, modules: list[str]) -> None:
     """How many mutants each module has under the policy, and roughly how long it takes, from the
     per-mutant time of a finished baseline or, without one, 45 s for a module that recompiles the
-    solver core and 10 s otherwise (the 2-CPU development machine)."""
+    solver core or the stack engine (each ~40 s to compile, unloaded) and 10 s otherwise (the
+    2-CPU development machine)."""
     from cosmic_ray.commands.init import _all_work_items
 
     print("| module | mutants | recompiles | estimate |")
@@ -603,7 +613,8 @@ def plan(work: Work, modules: list[str]) -> None:
                 if _kept(item.mutations[0], lines[item.mutations[0].start_pos[0] - 1]))
         stale = stale_modules(REPO / "src", module)
         meta = json.loads(work.meta(module).read_text()) if work.meta(module).exists() else {}
-        per = meta.get("per_mutant_s", 45.0 if "solver/compiled.py" in stale else 10.0)
+        slow = stale & {"solver/compiled.py", "stack/engine.py"}
+        per = meta.get("per_mutant_s", 45.0 if slow else 10.0)
         total += n * per
         print(f"| {module} | {n} | {', '.join(sorted(stale)) or '-'} | {n * per / 60:.0f} min |")
     print(f"total ≈ {total / 3600:.1f} h on one worker")
