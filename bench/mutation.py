@@ -562,8 +562,9 @@ def try_mutant(work: Work, job: str, tests: list[str], current: bool = False) ->
         shutil.copytree(REPO / "src", tree / "src", ignore=shutil.ignore_patterns("__pycache__"))
     else:
         shutil.copytree(work.pristine, tree / "src")
-    shutil.copytree(work.tree / "tests", tree / "tests")
-    shutil.copy2(work.tree / "pyproject.toml", tree)
+    origin = REPO if current else work.tree  # where the tests (and their helpers) come from
+    shutil.copytree(origin / "tests", tree / "tests", ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copy2(origin / "pyproject.toml", tree)
     args = []
     for t in tests:
         file_part, _, node = t.partition("::")
