@@ -1479,6 +1479,21 @@ def test_floor_pressure_centre_without_a_normal_force_is_undefined():
         (0.2 * 20.0 - 0.8 * 5.0 - 0.5 * 0.8 * 2.0 * 2.0) / 49.0, rel=1e-14)
 
 
+def test_energies_of_a_statue_at_rest_are_those_of_the_stack_sliding_as_one():
+    """With the statue at rest (s = 0) the kinetic energy is ½·(m1 + m2)·u̇², and so is the
+    mechanical energy (V = 0 upright). Kills dynamics.py:178 (`0.5 / M`; the solver itself
+    never asks `kinetic_energy` for s = 0, so only a direct call sees it) and dynamics.py:169."""
+    from rocking.models.dynamics import kinetic_energy, mechanical_energy
+    from rocking.models.parameters import pack
+
+    statue = rk.Statue(width=0.4, height=2.0, mass=3.0)
+    pedestal = rk.Pedestal(mass=2.0, friction=rk.Friction(static=0.5))
+    p = pack(rk.System(statue=statue, pedestal=pedestal), gravity=9.81, normal_force="full", impact="coulomb",
+             rest_velocity=1e-6)
+    assert kinetic_energy(p, 0, 0.7, 0.0, 0.0) == pytest.approx(0.5 * 5.0 * 0.49, rel=1e-15)
+    assert mechanical_energy(p, 0, -0.7, 0.0, 0.0) == pytest.approx(0.5 * 5.0 * 0.49, rel=1e-15)
+
+
 def test_floor_pressure_centre_under_a_light_pedestal_is_defined():
     """x_N is undefined only where the floor's normal force is not positive. A 50 g statue on a
     20 g pedestal has N ≈ 0.7 N: dynamics.py:159 (`n <= 1.0`) reports NaN there, and the uplift
@@ -1557,6 +1572,9 @@ def test_a_sampled_signal_at_its_last_sample_is_its_last_value():
     # `i >= n + 1` or `i > n − 1` take interval n − 1, past the end, and get t = 0.03 right only
     # because its weight is 0 there)
     assert evaluate(sig.kind, sig.params, sig.time, sig.values, 0.025, 0.03) == pytest.approx(0.5, rel=1e-14)
+    # and nothing outside the record (signal.py:35, `return 1.0` there)
+    assert evaluate(sig.kind, sig.params, sig.time, sig.values, 0.05, 0.05) == 0.0
+    assert evaluate(sig.kind, sig.params, sig.time, sig.values, -0.01, -0.01) == 0.0
     loc = localise(sig.kind, sig.params, sig.time, sig.values, 0.03)
     assert loc[0] == 1.0 and loc[1] == -2.0 and loc[3] == 0.02
     assert loc[2] == pytest.approx(500.0, rel=1e-14)
