@@ -26,8 +26,9 @@ __all__ = ["cache_is_warm", "ensure_compiled", "ensure_stack_compiled", "main", 
 
 #: What a cold start of the two-body solver costs on a quiet 2-core machine, s (for the message).
 TYPICAL_SECONDS = 40
-#: The same for the stack engine, s.
-STACK_TYPICAL_SECONDS = 50
+#: The same for the stack engine, s (50 s before its kinematics were inlined into the right-hand
+#: side; that took a cold start from 83 to 119 s on a loaded machine, so about 70 s on a quiet one).
+STACK_TYPICAL_SECONDS = 70
 
 # Re-entrant: compiling runs a simulation, and ``simulate`` itself calls ensure_compiled (which
 # then returns at once, _done being set); a plain Lock would deadlock the first run.

@@ -140,7 +140,10 @@ def anchor_at(P, ends, anchor, k, z, zd, e_new, type_new, x_new):
     return qx, -hu - qy, qdx, -qdy
 
 
-@njit(cache=True, _nrt=False)
+# Inlined into its callers (Numba IR level): a call that passes a dozen arrays costs ~40 ns,
+# as much as the kinematics of one block; inlining this, mass_and_forces_on and the mode solve
+# made one evaluation of a block 143 → 100 ns (docs/theory/stack.md §9).
+@njit(cache=True, _nrt=False, inline="always")
 def forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, theta, theta_d):
     """Absolute poses and their acceleration maps, from the floor up (fills the arrays):
     X[k], Θ[k] (centre, m; rotation, rad), Ẋ[k], Θ̇[k], and A[k] (2 × 3N), β[k], C[k] (3N)
@@ -229,7 +232,7 @@ def mass_and_forces(P, A, beta, C, ah, av, gravity, M, f):
     mass_and_forces_on(P, A, beta, C, ah, av, gravity, M, f, 3 * P.shape[0], np.arange(3 * P.shape[0]))
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, inline="always")  # (inlined: see forward)
 def mass_and_forces_on(P, A, beta, C, ah, av, gravity, M, f, n_cols, cols):
     """:func:`mass_and_forces` on the columns cols[:n_cols] of M only (the others are left as
     they were): a mode's equations read only the columns of its free coordinates, one to three

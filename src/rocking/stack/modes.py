@@ -67,7 +67,7 @@ N_CANDIDATES = 10
 SELECT_OK, SELECT_NONE, SELECT_HELD = 0, 1, 2
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, inline="always")  # (inlined: see kinematics.forward)
 def frozen_set(nstate, tstate, P, frozen):
     """frozen[i] = True for the coordinates a mode holds fixed."""
     n = nstate.shape[0]
@@ -79,7 +79,7 @@ def frozen_set(nstate, tstate, P, frozen):
         frozen[i + 2] = closed
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, inline="always")  # (inlined: see kinematics.forward)
 def solve_mode_in(M, f, P, nstate, tstate, x_out, lam_out, frozen, free, row_of, K, b):
     """Solve the mode's equations M z̈ = f + Λ: x_out = z̈ (or ż⁺), lam_out = Λ on frozen
     coordinates (and the friction force −μk σ Λ_d on a slipping a). Returns False if the system
