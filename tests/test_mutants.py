@@ -1404,10 +1404,9 @@ def test_contact_forces_along_a_run_match_the_sympy_derivation(case, regimes):
     pressure centre x_N under the pedestal) at every saved sample, against the sympy derivation
     (`tests/oracles/lagrange.py`: the regime's accelerations and forces; x_N by the pedestal's
     moment balance), to 1e-9 relative: both evaluate closed forms at the same state, so they
-    differ by rounding. Kills dynamics.py:71 (F = M(a − ü) for a sliding statue at rest), the
-    six mutants of `pressure_centre` (dynamics.py:159, 162: `s/B`, `B/Py`, `·n`, `1.5·h1`,
-    `a − ü`, and `n <= 1` which leaves x_N undefined under a pedestal whose normal force is below
-    1 N... here 49 N, so that one is killed by the light case below)."""
+    differ by rounding. Kills dynamics.py:71 (F = M(a − ü) for a sliding statue at rest) and the
+    mutants of `pressure_centre` at dynamics.py:162 (`s/B`, `B/Py`, `·n`, `1.5·h1`, `0.5/h1`,
+    `a − ü`)."""
     from oracles import lagrange
     from oracles.energy import lagrange_params
 
@@ -1535,7 +1534,8 @@ _ANALYTIC_MOTIONS = {
 def test_the_local_form_of_an_analytic_signal_holds_at_both_ends_of_the_motion(name):
     """`localise` on the side of t = 0 and of t = t_end gives the formula `evaluate` gives there
     (a motion is on over its closed interval, as `acceleration` says: see the pulse tests above).
-    Kills signal.py:78 `piece <= 0` and `piece >= params[3]` (zero at the start, or at the end)."""
+    Kills signal.py:78 `piece <= 0` and `piece >= params[3]` (zero at the start, or at the end),
+    and `kind < 0 and piece < 0` (the formula before the motion starts)."""
     from rocking.excitation.signal import evaluate, local_value, localise
 
     motion = _ANALYTIC_MOTIONS[name]
@@ -1552,6 +1552,10 @@ def test_the_local_form_of_an_analytic_signal_holds_at_both_ends_of_the_motion(n
         assert evaluate(sig.kind, sig.params, sig.time, sig.values, t, t) == pytest.approx(expected, rel=1e-14, abs=1e-15)
         loc = localise(sig.kind, sig.params, sig.time, sig.values, t)
         assert local_value(loc, 0, t) == pytest.approx(expected, rel=1e-14, abs=1e-15), t
+    # and nothing before the motion starts (signal.py:78 `kind < 0 and piece < 0.0 or …`)
+    loc = localise(sig.kind, sig.params, sig.time, sig.values, -0.01)
+    assert local_value(loc, 0, -0.01) == 0.0
+    assert evaluate(sig.kind, sig.params, sig.time, sig.values, -0.01, -0.01) == 0.0
     # Not a vacuous check: each motion is clearly non-zero at one end at least.
     assert max(abs(float(v)) for v in motion.acceleration(np.array([0.0, t_end]))) > 0.1
 
