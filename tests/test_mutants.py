@@ -1602,6 +1602,8 @@ def test_cosine_band_exit_when_the_crest_only_touches_the_band_edge():
     trough = cosine_band_exit(2.0, omega, 0.5 * math.pi, 0.0, 10.0, -2.0, 5.0)
     assert trough == pytest.approx(0.25 - 1e-6 / omega, abs=1e-12)
     assert cosine_band_exit(2.0, omega, 0.5 * math.pi, 0.0, 10.0, -2.0 - 1e-9, 2.0 + 1e-9) == 10.0
+    # and no frequency, no exit to compute: t (signal.py:118 `omega < 0.0` divides by it)
+    assert cosine_band_exit(2.0, 0.0, 0.5 * math.pi, 0.0, 10.0, -5.0, 1.0) == 0.0
 
 
 def test_cosine_band_exit_starting_on_the_band_edge_is_now():
