@@ -7,6 +7,7 @@ in bench/MUTATION.md). They check behaviour the suite left open, not the mutatio
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import re
 import sys
@@ -1383,6 +1384,7 @@ _TWO_COMPONENT_CASES = {
 }
 
 
+@functools.cache  # each case is read by two tests; the response is not modified
 def _two_component_run(case):
     """A 3 kg statue on a 2 kg pedestal (masses ≠ 1, so that a `·M` written `/M` shows) under a
     record-like motion with a vertical component: 1.2 Hz horizontal, weaker then stronger, and a
