@@ -412,24 +412,35 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 break
         t_lim = t_end
         crossed = False
-        while ib < nb and breakpoints[ib] <= t:
-            ib += 1
-            loc = pieces[ib]
-            crossed = True
-            g0_ok = False
+        same_floor = False
+        if ib < nb and breakpoints[ib] <= t:
+            ah_was, av_was = _ground(loc, t)
+            while ib < nb and breakpoints[ib] <= t:
+                ib += 1
+                loc = pieces[ib]
+                crossed = True
+            # Across a record's sample the floor acceleration is continuous, and equal to the
+            # last bit 19 times in 20: the right-hand side K[0] and the guards g0 at (t, y), which
+            # depend on the floor only through it, then stay as the last step left them.
+            same_floor = _ground(loc, t) == (ah_was, av_was)
         at_rest = _all_stuck(nstate, tstate)
         if not at_rest:
             band_ok = False
         if crossed:
             # the floor motion may jump here (a pulse's end): the mode is decided again if any
             # guard is not positive under the new formula
-            if at_rest:
-                if not band_ok:
-                    _rest_band(P, ends, anchor, nstate, tstate, y, gravity, held, band0, band_h, band_v, ws)
-                    band_ok = True
-                _band_guards(band0, band_h, band_v, loc, t, g0)
-            else:
-                guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0, held, ws)
+            reuse = same_floor and g0_ok and k0_ok and not at_rest
+            if not reuse:
+                if at_rest:
+                    if not band_ok:
+                        _rest_band(P, ends, anchor, nstate, tstate, y, gravity, held, band0, band_h, band_v, ws)
+                        band_ok = True
+                    _band_guards(band0, band_h, band_v, loc, t, g0)
+                    g0_ok = False
+                else:
+                    guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0, held, ws)
+                    g0_ok = True
+                k0_ok = False  # K[0] is made when a step needs it (a rest skips it)
             bad = False
             for j in range(ng):
                 if g0[j] <= 0.0 and _is_force(j, nstate, tstate):
@@ -449,7 +460,8 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 y[:nz] = zv
                 y[nz:2 * nz] = zdv
                 band_ok = False
-            k0_ok = False  # K[0] is made when a step needs it (a rest skips it)
+                g0_ok = False
+                k0_ok = False
         if ib < nb:
             t_lim = min(t_lim, breakpoints[ib])
         if t_settle > t and t_settle < t_lim:
