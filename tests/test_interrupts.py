@@ -107,11 +107,18 @@ def compiled():
     rk.simulate(rk.System(statue=statue), rk.Harmonic(amplitude=1.0, frequency=1.0, cycles=1))
 
 
+def _as_at_a_terminal() -> None:
+    # A command started in the background by a non-interactive shell (`pytest … &`, a CI runner, a
+    # mutation worker) inherits SIGINT ignored, and Python then leaves it ignored, as it should: the
+    # signal would do nothing. The tests are about a command started at a terminal.
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _start(*args: str, cwd: Path) -> subprocess.Popen:
     env = {**os.environ, "PYTHONUNBUFFERED": "1"}
     env.pop("ROCKING_DEBUG", None)
     return subprocess.Popen([sys.executable, "-m", "rocking.cli", *args], cwd=cwd, env=env, text=True,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, preexec_fn=_as_at_a_terminal)
 
 
 def _cpu_seconds(pid: int) -> float:
