@@ -165,6 +165,24 @@ def test_fragility_curves_of_an_ida_and_the_chart(runs):
     assert "θ/α" in ax.get_ylabel()
 
 
+def test_a_run_the_solver_stops_before_a_verdict_counts_as_a_fall_and_is_reported(records):
+    """max_events = 3 stops every run with more than three events (status "max_events") long
+    before its record ends: nothing is known about whether the statue stands, so the run may not
+    count as a survival (it did until 2026-11-24, when a stopped run simply had no fall)."""
+    from rocking.analyses.fragility import fragility_report_lines
+
+    rec = {RECORDS[1]: records[RECORDS[1]]}
+    ds = ida(SYSTEMS["alone"], rec, [1.0, 4.0], free_time=3.0, options=rk.Options(gravity=G, max_events=3), workers=1)
+    status = ds.status.values[0, 0]
+    # 1 m/s² < g tan α: at rest throughout; at 4 m/s² it rocks, and the run stops at its 4th event
+    assert status.tolist() == ["completed", "max_events"]
+    assert ds.fall.values[0, 0].tolist() == [False, True] and ds.exceed.values[0, 0].tolist() == [False, True]
+    assert int(ds.solver_stopped.values[0]) == 1 and int(ds.undetermined.values[0]) == 1
+    lines = fragility_report_lines(fragility_curves(ds, n_boot=10, seed=1), ds, free_time=3.0)
+    text = "\n".join(lines)
+    assert "1 run(s) were stopped by the solver before a verdict" in text and "still moving" not in text
+
+
 def test_a_median_beyond_the_levels_run_is_flagged_and_the_levels_are_counted(runs):
     import matplotlib
 

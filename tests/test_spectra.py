@@ -2,6 +2,7 @@
 orbit (O11), and the safe islands found by scan + bisection."""
 
 import math
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -221,6 +222,22 @@ def test_a_gap_in_the_boundary_says_nothing_overturned_in_the_scanned_range(with
     assert ax.get_legend().get_bbox_to_anchor().y0 > ax.get_window_extent().y1 - 1  # above the axes
 
 
+def test_runs_the_solver_stopped_are_reported_as_counted_safe(with_islands):
+    """A run the solver stops before a verdict counts as safe in the scan, which can only raise the
+    boundary: the report must say so (it said nothing until 2026-11-24)."""
+    from rocking.analyses.spectra import spectrum_report
+
+    _, ds = with_islands
+    assert int(ds.failed_runs.sum()) == 0
+    assert "stopped by the solver" not in spectrum_report(ds)
+    stopped = ds.copy(deep=True)
+    stopped["failed_runs"].values[0, 0] = 2
+    report = spectrum_report(stopped)
+    runs = int(ds.runs.sum())
+    assert (f"**2 of {runs} runs were stopped by the solver before a verdict (too many events, or no consistent "
+            "contact mode): counted as safe, so a boundary may lie lower than shown.**") in report
+
+
 def test_bad_inputs_are_refused():
     system = rk.System(statue=slender(0.1))
     with pytest.raises(ValueError, match="unknown spectrum motion"):
@@ -382,6 +399,11 @@ def test_spectrum_command(tmp_path, capsys):
         api = overturning_spectrum(rk.System(statue=rk.Statue(width=0.4, height=2.0, mass=1.0)), ["sine", "cosine"],
                                    [1.0, 2.0, 3.0], amplitude_range=(1.01, 10.0), n_scan=20, options=OPTS, workers=1)
         np.testing.assert_array_equal(ds.amplitude_ratio.values, api.amplitude_ratio.values)
+    # a run the solver stops (here after its second event) counts as safe, and the command says so
+    cfg.write_text(SPECTRUM_TOML.replace("gravity = 9.81", "gravity = 9.81\nmax_events = 2"))
+    assert cli_main.main(["spectrum", str(cfg), "--out", str(tmp_path / "stopped"), "--workers", "1"]) == 0
+    said = capsys.readouterr().out
+    assert re.search(r"warning: \d+ of \d+ runs were stopped by the solver before a verdict: counted as safe", said)
     cfg.write_text(SPECTRUM_TOML.replace('"cosine"]', '"square"]'))
     assert cli_main.main(["spectrum", str(cfg), "--out", str(out)]) == 2
     assert "spectrum.motions" in capsys.readouterr().err

@@ -140,8 +140,10 @@ def ida(
     xarray.Dataset
         Dimensions ``system``, ``record``, ``level``; every summary field of the runs plus
         ``exceed`` (θ/α reached 1, or fell) and ``fall`` (overturned), and ``scale_factor``.
-        A run still moving at the free-motion cap (``still_moving``) is not shown to survive:
-        it counts as a fall and an exceedance (conservative), and ``undetermined`` counts them.
+        A run still moving at the free-motion cap (``still_moving``), or stopped by the solver
+        before a verdict (``max_events``, ``inconsistent``, …), is not shown to survive: it counts
+        as a fall and an exceedance (conservative); ``undetermined`` counts both kinds and
+        ``solver_stopped`` the second.
         For a stack, any block that overturns (or slides off the one below) is a fall, and so,
         with ``options.stop_at_edge``, is a block that reaches the edge of the one below (status
         ``slid_past_edge``: the run stops there), counted in ``slid_off``.
@@ -187,11 +189,17 @@ def ida(
     ds["level"].attrs.update(units=IM_UNITS[im], long_name=im.upper())
     ds["scale_factor"] = (("record", "level"), factors)
     slid_off = ds["status"] == "slid_past_edge"
+    # A run the solver stopped before a verdict (max_events, inconsistent, singular, step_failed)
+    # says nothing about survival: like a run still moving, it must not count as one.
+    stopped = ~ds["status"].isin(["completed", "overturned", "still_moving", "slid_past_edge"])
     # a stack stops when any of its blocks overturns (status "overturned"), the statue or not
-    ds["fall"] = ds["overturned"] | (ds["status"] == "overturned") | ds["still_moving"] | slid_off
+    ds["fall"] = ds["overturned"] | (ds["status"] == "overturned") | ds["still_moving"] | slid_off | stopped
     ds["exceed"] = ds["fall"] | (ds["peak_rotation_over_alpha"] >= 1.0)
-    ds["undetermined"] = ds["still_moving"].sum(dim=("record", "level"))
-    ds["undetermined"].attrs["long_name"] = "runs still moving at the free-motion cap (counted as falls)"
+    ds["undetermined"] = (ds["still_moving"] | stopped).sum(dim=("record", "level"))
+    ds["undetermined"].attrs["long_name"] = ("runs still moving at the free-motion cap or stopped by the solver "
+                                             "(counted as falls)")
+    ds["solver_stopped"] = stopped.sum(dim=("record", "level"))
+    ds["solver_stopped"].attrs["long_name"] = "runs the solver stopped before a verdict (counted as falls)"
     ds["slid_off"] = slid_off.sum(dim=("record", "level"))
     ds["slid_off"].attrs["long_name"] = "runs where a block slid to the edge of the one below (counted as falls)"
     ds.attrs.update(study="ida", im=im, im_units=IM_UNITS[im], free_time=float(free_time),
@@ -583,10 +591,15 @@ def fragility_report_lines(curves, runs, *, free_time: float, charts: Sequence[s
                  for s in range(len(systems)) for m in range(len(MODES))]
         lines.append(f"| {level:.3g} | " + " | ".join(cells) + " |")
     lines.append("")
-    undetermined = int(runs.undetermined.sum())
-    if undetermined:
-        lines += [f"**{undetermined} run(s) were still moving {free_time:g} s after their record ended: "
+    stopped = int(runs.solver_stopped.sum()) if "solver_stopped" in runs else 0
+    moving = int(runs.undetermined.sum()) - stopped
+    if moving:
+        lines += [f"**{moving} run(s) were still moving {free_time:g} s after their record ended: "
                   "undetermined, counted as falls.** Raise fragility.free_time to decide them.", ""]
+    if stopped:
+        lines += [f"**{stopped} run(s) were stopped by the solver before a verdict (too many events, or no "
+                  "consistent contact mode): undetermined, counted as falls.** Their statuses are in the "
+                  "runs' `status`.", ""]
     slid = int(runs.slid_off.sum()) if "slid_off" in runs else 0
     if slid:
         lines += [f"**{slid} run(s): a block slid to the edge of the one below, where the stack engine stops: "

@@ -21,7 +21,9 @@ The motions, for an amplitude a_p = A·g·tan α and a circular frequency ω_p =
 Every run lasts the motion, then goes on with the floor still until the block is at rest or
 falls, for at most ``free_time``/p (25 by default: enough for a block that is still rocking
 after the pulse to fall or settle). A run still moving at that cap is undetermined: it counts
-as safe in the scan, and is counted in ``undetermined_runs``.
+as safe in the scan, and is counted in ``undetermined_runs``. So does a run the solver stops
+before a verdict (too many events, a singular or inconsistent contact mode), counted in
+``failed_runs``; the report and the command warn of both (a boundary may lie lower).
 
     >>> import rocking as rk
     >>> from rocking.analyses.spectra import overturning_spectrum
@@ -135,7 +137,9 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
     if status == C.STATUS_INTERRUPTED:
         # cut short by a signal: not a result, and never to be saved in a chunk (see store._run_runs)
         raise KeyboardInterrupt("a run of the spectrum was interrupted")
-    if status in (C.STATUS_SINGULAR, C.STATUS_STEP_FAILED):
+    if status in (C.STATUS_SINGULAR, C.STATUS_STEP_FAILED, C.STATUS_MAX_EVENTS):
+        if task.criterion == "exceed" and not math.isnan(raw[C.S_EXCEED_TIME]):
+            return True  # it had passed α before the solver stopped: that much is known
         counter[1] += 1
         return False
     if status == C.STATUS_STILL_MOVING:
@@ -338,7 +342,8 @@ def overturning_spectrum(
         boundary; ``inf`` = still safe at the top of the scan), ``n_islands``, every change of
         outcome found (``edge_lower``/``edge_upper`` brackets, ``edge_to_failure`` True where
         the block fails above it), ``scan_fails`` (the coarse scan), ``runs``,
-        ``failed_runs`` (solver failures, counted as safe), ``undetermined_runs`` (still
+        ``failed_runs`` (solver failures: max_events, singular, step_failed; for stacks also
+        inconsistent; counted as safe), ``undetermined_runs`` (still
         moving at the free-motion cap, counted as safe) and ``slid_off_runs`` (stacks only).
 
     Notes
@@ -574,6 +579,10 @@ def spectrum_report(ds, *, title: str = "Overturning spectra", chart: str | None
     if unsure:
         lines += [f"**{unsure} of {runs} runs were still moving at the end of their free motion: undetermined, "
                   "counted as safe.** Raise spectrum.free_time to decide them.", ""]
+    failed = int(ds.failed_runs.sum()) if "failed_runs" in ds else 0
+    if failed:
+        lines += [f"**{failed} of {runs} runs were stopped by the solver before a verdict (too many events, or no "
+                  "consistent contact mode): counted as safe, so a boundary may lie lower than shown.**", ""]
     slid = int(ds.slid_off_runs.sum())
     if slid:
         lines += [f"**In {slid} of {runs} runs a block slid to the edge of the one below, where the stack engine "

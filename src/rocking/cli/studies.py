@@ -874,6 +874,10 @@ def spectrum(config: _CONFIG, out: _OUT = None, workers: _WORKERS = None, schedu
         console_lines.append(f"warning: {undetermined} of {int(ds.runs.sum())} runs were still moving at the free-motion "
                              f"cap ({a['free_time']:g}/p after the motion): undetermined, counted as safe; raise "
                              "spectrum.free_time")
+    failed = int(ds.failed_runs.sum())
+    if failed:
+        console_lines.append(f"warning: {failed} of {int(ds.runs.sum())} runs were stopped by the solver before a "
+                             "verdict: counted as safe, so a boundary may lie lower than shown (spectrum_report.md)")
     slid = int(ds.slid_off_runs.sum())
     if slid:
         console_lines.append(f"note: in {slid} of {int(ds.runs.sum())} runs a block slid to the edge of the one below, "
