@@ -501,6 +501,62 @@ def test_no_corner_sinks_into_the_face_below_under_a_record(record):
     assert _deepest_sink(r) > -1e-9
 
 
+def _random_stacks(seed: int, count: int):
+    """``count`` random stacks of one to three blocks (sizes 0.15–1.6 m, masses 3–1000 kg, offsets,
+    friction on four interfaces in five, some restitutions), each under a random sine pulse, harmonic
+    or 15 s of a record scaled by 0.3–1.2."""
+    from rocking.io.records import read_record
+
+    names = ("LomaPrieta1989_Corralitos_000", "Friuli1976_Tolmezzo_000", "Kobe1995_Takatori_000",
+             "Northridge1994_RinaldiReceivingSta_228", "ImperialValley1940_ElCentroArray9_180")
+    records = [read_record(name).trimmed(15.0) for name in names]
+    rng = np.random.default_rng(seed)
+    for _ in range(count):
+        blocks, interfaces = [], []
+        for k in range(int(rng.integers(1, 4))):
+            width, height, mass = rng.uniform(0.15, 1.2), rng.uniform(0.2, 1.6), 10 ** rng.uniform(0.5, 3)
+            offset = rng.uniform(-0.1, 0.1) if k else 0.0
+            blocks.append(Block(width=float(width), height=float(height), mass=float(mass), offset=float(offset)))
+            mu_s = float(rng.uniform(0.2, 0.8))
+            friction = Friction(static=mu_s, kinetic=mu_s * float(rng.uniform(0.7, 1.0))) if rng.random() < 0.8 else None
+            restitution = float(rng.uniform(0.5, 0.95)) if rng.random() < 0.3 else None
+            interfaces.append(Interface(friction=friction, restitution=restitution))
+        try:
+            stack = Stack(blocks=tuple(blocks), interfaces=tuple(interfaces))
+        except ValueError:  # a block that does not rest on the one below
+            stack = None
+        kind = rng.integers(0, 3)
+        if kind == 0:
+            motion = rocking.SinePulse(amplitude=float(rng.uniform(1, 8)), frequency=float(rng.uniform(0.5, 3)))
+        elif kind == 1:
+            motion = rocking.Harmonic(amplitude=float(rng.uniform(1, 6)), frequency=float(rng.uniform(0.5, 3)),
+                                      cycles=int(rng.integers(2, 6)))
+        else:
+            motion = records[int(rng.integers(0, 5))].scaled(float(rng.uniform(0.3, 1.2)))
+        if stack is not None:
+            yield stack, motion
+
+
+@pytest.mark.parametrize("seed", [1, 4])
+def test_no_corner_sinks_into_the_face_below_in_random_stacks(seed):
+    """150 random stacks per seed. Before the fix above, 11 of the 150 of seed 1 had a block
+    rocking through the one below (0.2 to 1 m deep) and reported it "overturned". Today the
+    deepest is 1.8e-6 m (seed 4: a chattering sequence of micro-impacts the run stops at
+    max_events), so 1e-5 m; the old failures were 1e4 times deeper. A run may end undetermined
+    (a few in a hundred: inconsistent or max_events), never with an exception. Where a run reaches
+    a verdict its ledger balances to 1e-5 of its energy scale: the worst today is 2.7e-6 (seed 4,
+    1325 events), far from the 1e-9 of the designed stacks (docs/theory/stack.md §9)."""
+    statuses = set()
+    for stack, motion in _random_stacks(seed, 150):
+        r = simulate_stack(stack, motion, options={"save_dt": 0.005, "max_events": 5000})
+        statuses.add(r.status)
+        assert _deepest_sink(r) > -1e-5, (stack, motion, r.verdict)
+        if r.status in ("completed", "overturned"):
+            scale = np.max(np.abs(r.input_work)) + np.max(np.abs(r.energy - r.initial_energy))
+            assert np.max(np.abs(r.balance_error())) <= 1e-5 * scale, (stack, motion)
+    assert {"completed", "overturned"} <= statuses
+
+
 SQUAT_ON_PLINTH_MU = 0.1
 
 
