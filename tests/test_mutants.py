@@ -1642,3 +1642,61 @@ def test_cosine_band_exit_exactly_on_the_exit_phase_is_now():
             down += 1
             assert cosine_band_exit(1.0, 1.0, gamma, 0.0, 100.0, -edge, 1.5) == 0.0, edge
     assert up > 10 and down > 10
+
+# ------------------------------------------------------------------------------------------------
+# excitation/signal.py, ninth round
+
+
+def _harmonic_on_a_sinking_floor(amplitude, omega, sink, end):
+    """a_h = A·sin(ω t) and a_v = −``sink`` (the floor accelerating downwards) for 0 ≤ t ≤ end: a
+    motion of the user's own (rk.excitation.base.AbstractMotion), since none of the library's pairs
+    a harmonic with a vertical component."""
+    from rocking.excitation.base import KIND_HARMONIC, KIND_RECTANGLE, AbstractMotion, Signal
+
+    class Motion(AbstractMotion):
+        duration = end
+
+        def acceleration(self, t):
+            t = np.asarray(t, dtype=float)
+            return np.where((t >= 0) & (t <= end), amplitude * np.sin(omega * t), 0.0)
+
+        def signal(self):
+            return Signal(KIND_HARMONIC, np.array([amplitude, omega, -0.5 * math.pi, end]), np.zeros(0), np.zeros(0))
+
+        def vertical_signal(self):
+            return Signal(KIND_RECTANGLE, np.array([-sink, end, 0.0, end]), np.zeros(0), np.zeros(0))
+
+        def vertical_acceleration(self, t):
+            t = np.asarray(t, dtype=float)
+            return np.where((t >= 0) & (t < end), -sink, 0.0)
+
+    return Motion()
+
+
+def test_a_harmonic_on_a_sinking_floor_starts_the_rocking_at_the_lowered_threshold():
+    """A block at rest under a_h = A sin ωt on a floor sinking at c = g/2: rocking starts where
+    |a_h| = (g − c)·tan α (Housner's threshold under the apparent gravity), t* = asin((g − c) tan α /
+    A)/ω, although A < g tan α. Kills signal.py:56 LOCAL_ZERO = 1.0 (the solver then takes a
+    vertical that is linear in time for none, and crosses the rest under the harmonic with the
+    band of the still floor, where the block never rocks)."""
+    g = 9.81
+    statue = rk.Statue(width=0.3, height=1.2, mass=100.0)
+    A, omega, sink = 1.8, 2.0, 0.5 * g
+    assert (g - sink) * 0.25 < A < g * 0.25
+    r = rk.simulate(rk.System(statue=statue), _harmonic_on_a_sinking_floor(A, omega, sink, 2.0),
+                    options=rk.Options(gravity=g), save=False).summary()
+    t_star = math.asin((g - sink) * 0.25 / A) / omega
+    assert r["first_rocking_time"] == pytest.approx(t_star, rel=1e-9)
+
+
+def test_the_zero_signal_is_zero_at_every_time_including_its_start():
+    """``evaluate`` of ``ZERO_SIGNAL`` (the vertical of every motion but a record with one): its
+    parameters are zeros, so t = 0 lies inside its piece [0, 0] and runs past every kind's branch
+    to the last return. Kills signal.py:50 `return 1.0`."""
+    from rocking.excitation.base import ZERO_SIGNAL
+    from rocking.excitation.signal import evaluate, local_value, localise
+
+    z = ZERO_SIGNAL
+    for t in (-1.0, 0.0, 1e-300, 0.5, 10.0):
+        assert evaluate(z.kind, z.params, z.time, z.values, t, t) == 0.0
+        assert local_value(localise(z.kind, z.params, z.time, z.values, t), 0, t) == 0.0
