@@ -1700,3 +1700,18 @@ def test_the_zero_signal_is_zero_at_every_time_including_its_start():
     for t in (-1.0, 0.0, 1e-300, 0.5, 10.0):
         assert evaluate(z.kind, z.params, z.time, z.values, t, t) == 0.0
         assert local_value(localise(z.kind, z.params, z.time, z.values, t), 0, t) == 0.0
+
+
+# ------------------------------------------------------------------------------------------------
+# excitation/base.py
+
+
+def test_a_motion_of_the_users_own_has_its_ends_as_breakpoints_and_its_sampled_peak_as_pga():
+    """What ``AbstractMotion`` gives a subclass that defines only the four required members: the
+    breakpoints are the motion's start and end, and ``pga`` is the largest |a_g| over 20 001
+    samples of [0, duration]. a_h = A sin 2t on [0, 2] s peaks at t = π/4; the nearest sample is
+    within 5e-5 s of it, so the sampled peak is A to 5e-9 (relative). Kills base.py:73 (the first
+    breakpoint at 1 s) and base.py:78 (sampling from t = 1 s, where the peak is A sin 2 = 0.91 A)."""
+    motion = _harmonic_on_a_sinking_floor(1.8, 2.0, 0.0, 2.0)
+    np.testing.assert_array_equal(motion.breakpoints, [0.0, 2.0])
+    assert motion.pga == pytest.approx(1.8, rel=5e-9)
