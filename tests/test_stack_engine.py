@@ -557,6 +557,60 @@ def test_no_corner_sinks_into_the_face_below_in_random_stacks(seed):
     assert {"completed", "overturned"} <= statuses
 
 
+def test_the_library_measures_a_sinking_corner_as_the_independent_geometry_does():
+    """rocking.stack.simulate.deepest_sink (the check every run now makes on itself) against
+    ``_deepest_sink`` here, on random stacks and on the same poses with a block turned into the one
+    below: equal to rounding (1e-15 m), and 0 where nothing sinks."""
+    from rocking.stack.simulate import deepest_sink
+
+    sunk_depths = []
+    for stack, motion in list(_random_stacks(2, 40))[::4]:
+        r = simulate_stack(stack, motion, options={"save_dt": 0.01, "max_events": 2000})
+        assert deepest_sink(stack, r.pose) == pytest.approx(max(0.0, -_deepest_sink(r)), abs=1e-15)
+        if stack.n >= 2:
+            turned = r.pose.copy()
+            turned[:, -1, 2] += 0.05  # the top block tilted about its centre: one corner dips
+            sunk = dataclasses.replace(r, pose=turned)
+            depth = deepest_sink(stack, turned)
+            assert depth == pytest.approx(max(0.0, -_deepest_sink(sunk)), rel=1e-12, abs=1e-15)
+            sunk_depths.append(depth)
+    # (a corner that dips beyond the end of the face below is not on it: some give 0)
+    assert sum(d > 1e-3 for d in sunk_depths) >= 2
+
+
+def test_a_run_whose_blocks_overlap_gives_no_verdict(monkeypatch):
+    """Should the engine lose a contact again (a corner going on through the face below, as before
+    the fix of 2026-11-24), the run is not believed: status "lost_contact", an undetermined
+    verdict, and the studies count it as not safe (spectrum: a solver failure)."""
+    from rocking.stack import engine
+    from rocking.stack import simulate as sim
+
+    stack = Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(width=0.3, height=1.2, mass=100.0)),
+                  interfaces=(Interface(friction=Friction(static=0.3)), Interface()))
+    motion = rocking.SinePulse(amplitude=1.0, frequency=1.0)  # nothing moves: 1 < 0.25 g
+    honest = simulate_stack(stack, motion)
+    assert honest.status == "completed" and sim.deepest_sink(stack, honest.pose) == 0.0
+    integrate = engine.integrate
+
+    def sinking(*args):
+        out = list(integrate(*args))
+        samples = out[2].copy()
+        # the statue's Θ in the last saved rows: turned by 0.01 rad about its centre (its corner
+        # 1.5 mm deep; 0.1 mm is the limit)
+        samples[-3:, 1 + engine.N_BLOCK_COLS + 2] += 0.01
+        out[2] = samples
+        return tuple(out)
+
+    monkeypatch.setattr(engine, "integrate", sinking)
+    r = simulate_stack(stack, motion)
+    assert r.status == "lost_contact"
+    assert r.verdict.startswith("undetermined: a block went into the one below it")
+    assert r.summary()["verdict"] == r.verdict
+    from rocking.analyses.spectra import _STACK_SOLVER_FAILURES
+
+    assert "lost_contact" in _STACK_SOLVER_FAILURES
+
+
 SQUAT_ON_PLINTH_MU = 0.1
 
 

@@ -152,7 +152,7 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
     return overturned
 
 
-_STACK_SOLVER_FAILURES = ("inconsistent", "step_failed", "max_events")
+_STACK_SOLVER_FAILURES = ("inconsistent", "step_failed", "max_events", "lost_contact")
 
 
 def _stack_fails(task: SpectrumTask, motion: Any, counter: list[int], options: Options) -> bool:
