@@ -81,7 +81,7 @@ MODULES: dict[str, list[str]] = {
     ],
     "excitation/record.py": ["test_mutants.py", "test_records.py", "test_config.py", "test_single_block_rocking.py"],
     "solver/compiled.py": [
-        "test_fast_paths.py", "test_single_block_rocking.py", "test_sliding_and_slide_rock.py",
+        "test_mutants.py", "test_fast_paths.py", "test_single_block_rocking.py", "test_sliding_and_slide_rock.py",
         "test_statue_on_pedestal.py", "test_integrator_crosscheck.py", "test_run_until_rest.py", "test_interrupts.py",
     ],
     "solver/crosscheck.py": ["test_integrator_crosscheck.py"],
