@@ -1732,3 +1732,28 @@ def test_a_light_rocking_stack_raises_no_warning_of_a_vanishing_normal_force():
     summary = r.summary()
     assert summary["first_sliding_time"] == 0.0 and summary["first_rocking_time"] == pytest.approx(0.249, abs=1e-3)
     assert r.warnings == []
+
+
+def test_the_required_top_friction_covers_the_instant_after_an_impact():
+    """A statue (0.3 × 1.2 m) rocking on a pedestal held by μs = 0.5 under 6 m/s²: right after its
+    first impact (t = 0.3471 s) the statue's base needs |Px|/Py = 0.3380, the largest of the whole
+    run, at an instant no integration stage sees (the next step starts from it). The summary's
+    required_top_friction must be at least every saved rocking sample's ratio (Response.contact_forces,
+    checked against the sympy derivation). Left out: the sample saved just before each event (its θ
+    has crossed zero by rounding, 8e-12 rad, so the ratio read there uses the pivot of the other
+    side), and the first one, at the onset (θ = θ̇ = 0: no pivot can be read from the state, and
+    contact_forces gives the forces of rest, |Px|/Py = a/g = 0.61). Kills compiled.py:805
+    `py <= 0.0` (the summary then said 0.3352)."""
+    statue = rk.Statue(width=0.3, height=1.2, mass=100.0)
+    pedestal = rk.Pedestal(mass=100.0, friction=rk.Friction(static=0.5, kinetic=0.4))
+    r = rk.simulate(rk.System(statue=statue, pedestal=pedestal), rk.Harmonic(amplitude=6.0, frequency=1.5, cycles=3),
+                    options=rk.Options(save_dt=0.002))
+    forces = r.contact_forces()
+    theta = np.asarray(r.theta)
+    before_event = np.append(np.diff(r.t) == 0.0, False)
+    onset = (theta == 0.0) & (np.asarray(r.theta_dot) == 0.0)
+    rocking = (np.asarray(r.regime_codes) == 1) & ~before_event & ~onset
+    ok = rocking & (np.abs(theta) <= r.alpha) & (forces["Py"] > 0)
+    sampled = float(np.max(forces["top_friction_ratio"][ok]))
+    assert sampled == pytest.approx(0.3380, abs=1e-4)
+    assert r.summary()["required_top_friction"] >= sampled * (1 - 1e-12)
