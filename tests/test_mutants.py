@@ -1757,3 +1757,22 @@ def test_the_required_top_friction_covers_the_instant_after_an_impact():
     sampled = float(np.max(forces["top_friction_ratio"][ok]))
     assert sampled == pytest.approx(0.3380, abs=1e-4)
     assert r.summary()["required_top_friction"] >= sampled * (1 - 1e-12)
+
+
+def test_the_uplift_warning_falls_inside_the_uplift_seen_in_the_saved_samples():
+    """A statue rocking on a 0.6 m × 0.8 m pedestal that slides, under 5 m/s². The saved samples
+    (every 0.1 ms; Response.violations, from contact_forces) put the floor's pressure centre outside
+    the pedestal's base from 2.2397 s to 2.2687 s only. The solver checks it at the end of each step,
+    so its warning must fall inside that interval. It said 0.1775 s until 2026-11-24: the end-of-step
+    checks read the floor acceleration and the forces of the last event, because the FSAL copy took
+    only the derivatives (the warning mixed a = 5 m/s² from t = 0 with the state at 0.1775 s)."""
+    statue = rk.Statue(width=0.3, height=1.5, mass=100.0)
+    pedestal = rk.Pedestal(mass=100.0, friction=rk.Friction(static=0.3, kinetic=0.25), width=0.6, height=0.8)
+    r = rk.simulate(rk.System(statue=statue, pedestal=pedestal), rk.Harmonic(amplitude=5.0, frequency=1.5, cycles=3),
+                    options=rk.Options(save_dt=1e-4))
+    spans = [(t0, t1) for name, t0, t1 in r.violations() if name == "pedestal uplift"]
+    assert spans and spans[0][0] == pytest.approx(2.2397, abs=1e-4)
+    said = [w for w in r.warnings if "pedestal would uplift" in w]
+    assert len(said) == 1
+    t_warn = float(re.search(r"from t = ([0-9.]+) s", said[0]).group(1))
+    assert any(t0 - 1e-4 <= t_warn <= t1 + 1e-4 for t0, t1 in spans), (t_warn, spans)

@@ -699,8 +699,11 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                 g0[i] = g1[i]
                 if g1[i] > 0.0:
                     armed[i] = True
-            for j in range(N_STATE):
-                K[0, j] = K[fs, j]  # FSAL
+            # FSAL: the whole row, the floor accelerations, forces and ok flag with the derivatives
+            # (the checks at the step's end read them; copying only the derivatives left them at
+            # the last event, and the warnings judged a state long gone)
+            for j in range(K.shape[1]):
+                K[0, j] = K[fs, j]
             if low_order:
                 h = h_wanted  # the cut was the breakpoint's, not the accuracy's
             else:
