@@ -343,7 +343,7 @@ def overturning_spectrum(
         outcome found (``edge_lower``/``edge_upper`` brackets, ``edge_to_failure`` True where
         the block fails above it), ``scan_fails`` (the coarse scan), ``runs``,
         ``failed_runs`` (solver failures: max_events, singular, step_failed; for stacks also
-        inconsistent; counted as safe), ``undetermined_runs`` (still
+        inconsistent and lost_contact; counted as safe), ``undetermined_runs`` (still
         moving at the free-motion cap, counted as safe) and ``slid_off_runs`` (stacks only).
 
     Notes

@@ -240,9 +240,9 @@ def deepest_sink(stack: Stack, pose: np.ndarray) -> float:
     (or the floor), over the poses ``pose`` (n, N, 3) as in :attr:`StackResponse.pose`. A corner
     beyond the end of the face below is not on it and is skipped."""
     deepest = 0.0
+    cos, sin = np.cos(pose[:, :, 2]), np.sin(pose[:, :, 2])  # once: each block's Θ serves twice
     for k, block in enumerate(stack.blocks):
-        x, y, th = pose[:, k, 0], pose[:, k, 1], pose[:, k, 2]
-        c, s = np.cos(th), np.sin(th)
+        x, y, c, s = pose[:, k, 0], pose[:, k, 1], cos[:, k], sin[:, k]
         for xc in (-0.5 * block.width, 0.5 * block.width):
             px = x + xc * c - 0.5 * block.height * s  # the corner (xc, −h/2), Θ clockwise
             py = y - xc * s - 0.5 * block.height * c
@@ -250,10 +250,9 @@ def deepest_sink(stack: Stack, pose: np.ndarray) -> float:
                 gap = py
             else:
                 below = stack.blocks[k - 1]
-                xb, yb, tb = pose[:, k - 1, 0], pose[:, k - 1, 1], pose[:, k - 1, 2]
-                along = (px - xb) * np.cos(tb) - (py - yb) * np.sin(tb)
-                up = (px - xb) * np.sin(tb) + (py - yb) * np.cos(tb) - 0.5 * below.height
-                gap = np.where(np.abs(along) <= 0.5 * below.width, up, np.inf)
+                dx, dy, cb, sb = px - pose[:, k - 1, 0], py - pose[:, k - 1, 1], cos[:, k - 1], sin[:, k - 1]
+                up = dx * sb + dy * cb - 0.5 * below.height
+                gap = np.where(np.abs(dx * cb - dy * sb) <= 0.5 * below.width, up, np.inf)
             deepest = max(deepest, float(-np.min(gap, initial=0.0)))
     return deepest
 
