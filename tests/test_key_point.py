@@ -49,8 +49,12 @@ def _response_with(states, regimes):
     motion = rk.Harmonic(amplitude=2.0, frequency=1.0, cycles=1)
     base = rk.simulate(system, motion, duration=0.05, options=rk.Options(gravity=G))
     states = np.asarray(states, dtype=float)
+    regimes = np.asarray(regimes, dtype=np.int8)
+    # the rows' own signs: none of them is at θ = 0 or, while sliding, at u̇ = 0
+    pivot = np.where(regimes & 1, np.sign(states[:, 2]), 0).astype(np.int8)
+    slip = np.where(regimes & 2, np.sign(states[:, 1]), 0).astype(np.int8)
     return dataclasses.replace(base, t=np.linspace(0.0, 0.5, len(states)), state=states,
-                               regime_codes=np.asarray(regimes, dtype=np.int8))
+                               regime_codes=regimes, pivot=pivot, slip_direction=slip)
 
 
 def test_positions_of_the_corners_and_top_centre_at_given_angles():

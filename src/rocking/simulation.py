@@ -12,7 +12,7 @@ from .constants import STANDARD_GRAVITY
 from .excitation.base import AbstractMotion
 from .models.bodies import System
 from .models.parameters import pack
-from .results.response import Response
+from .results.response import Response, split_saved_codes
 from .solver.compiled import N_STATE, integrate
 from .solver.signals import deferred_signals
 from .solver.warmup import ensure_compiled
@@ -309,7 +309,8 @@ def simulate(
         initial_angular_velocity=initial_angular_velocity, initial_sliding_velocity=initial_sliding_velocity,
         save=save,
     )
-    summary, t, y, regime, events = solve(args)
+    summary, t, y, saved_codes, events = solve(args)
+    regime, pivot, slip = split_saved_codes(saved_codes)
     t_end = args[5]
     response = Response(
         system=system,
@@ -321,6 +322,8 @@ def simulate(
         t=t,
         state=y,
         regime_codes=regime,
+        pivot=pivot,
+        slip_direction=slip,
         event_table=events,
         duration_given=duration is not None,
     )

@@ -46,6 +46,18 @@ class Event(NamedTuple):
     after: Regime
 
 
+def split_saved_codes(codes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The solver's saved codes → (regime codes 0–3, pivot, slip direction), per sample. The pivot
+    is the sign of the rotation the statue rocks towards (0: it does not rock); the slip
+    direction is the sign of the sliding velocity of the body on the floor (0: it does not slide).
+    """
+    codes = np.asarray(codes, dtype=np.int8)
+    regime = (codes & 3).astype(np.int8)
+    pivot = np.where(regime & 1, np.where(codes & C.SAVED_NEGATIVE_PIVOT, -1, 1), 0).astype(np.int8)
+    slip = np.where(regime & 2, np.where(codes & C.SAVED_NEGATIVE_SLIP, -1, 1), 0).astype(np.int8)
+    return regime, pivot, slip
+
+
 def _opt(x: float) -> float | None:
     return None if math.isnan(x) else float(x)
 
@@ -118,6 +130,13 @@ class Response:
     regime_codes: np.ndarray = field(repr=False)
     event_table: np.ndarray = field(repr=False)
     duration_given: bool = False  # True: ``duration`` was asked for; False: it is the free-motion cap
+    #: Per sample, the signs of the regime as the solver had them: ``pivot``, the sign of the
+    #: rotation the statue rocks towards (0: not rocking), and ``slip_direction``, that of the
+    #: sliding velocity (0: not sliding). None: inferred from the signs of θ, θ̇ and u̇, which is
+    #: wrong at the onset of rocking (θ = θ̇ = 0) or sliding (u̇ = 0), and at a sample where θ
+    #: crossed 0 by rounding just before an impact.
+    pivot: np.ndarray | None = field(default=None, repr=False)
+    slip_direction: np.ndarray | None = field(default=None, repr=False)
 
     # -- time series -----------------------------------------------------------------------
     @property
@@ -263,6 +282,8 @@ class Response:
     # -- the model's assumptions along the run (derivation §3.5) ---------------------------
     def _regime_signs(self):
         th, thd, ud = self.theta, self.theta_dot, self.u_dot
+        if self.pivot is not None and self.slip_direction is not None:
+            return np.asarray(self.slip_direction, dtype=int), np.asarray(self.pivot, dtype=int)
         sig = np.where(np.isin(self.regime, (Regime.SLIDE, Regime.SLIDE_ROCK)), np.sign(ud), 0).astype(int)
         rock = np.isin(self.regime, (Regime.ROCK, Regime.SLIDE_ROCK))
         s = np.where(rock, np.where(th != 0, np.sign(th), np.sign(thd)), 0).astype(int)

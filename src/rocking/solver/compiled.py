@@ -214,6 +214,20 @@ def _regime(sig, s):
     return (1 if s != 0 else 0) + (2 if sig != 0 else 0)
 
 
+#: Added to a saved sample's regime code when the statue rocks on its negative pivot (s = −1),
+#: and when the body on the floor slides in the negative direction (σ = −1). Neither sign can be
+#: read back from the state: at the onset of rocking θ = θ̇ = 0 and at that of sliding u̇ = 0, and
+#: at the sample saved just before an impact θ may have crossed zero by rounding.
+SAVED_NEGATIVE_PIVOT = 4
+SAVED_NEGATIVE_SLIP = 8
+
+
+@njit(cache=True)
+def _saved_code(sig, s):
+    """The regime code of a saved sample, with the signs of the regime (see above)."""
+    return _regime(sig, s) + (SAVED_NEGATIVE_PIVOT if s < 0 else 0) + (SAVED_NEGATIVE_SLIP if sig < 0 else 0)
+
+
 @njit(cache=True, _nrt=False)
 def _guard_at(p, sig, s, y0, F, h, x, loc, t0, exceeded, work, gbuf, index):
     if s != 0 and index >= IMPACT:  # a guard of θ alone: interpolate θ only
@@ -399,7 +413,8 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
 
     Returns (summary, t_out, y_out, regime_out, events): the summary vector (layout above), the
     saved samples (a uniform grid of step ``save_dt`` merged with the event instants; empty when
-    ``save`` is False) and the event table (one row per event, N_EVENT_FIELDS columns).
+    ``save`` is False; a sample's regime code carries the signs of the regime, see
+    ``SAVED_NEGATIVE_PIVOT``) and the event table (one row per event, N_EVENT_FIELDS columns).
     """
     n_grid = int(math.floor((t_end - t0) / save_dt + 1e-9)) + 1 if save else 0
     cap = n_grid + 2 * max_events + 4 if save else 0
@@ -686,7 +701,7 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                     dop853.dense(y, F, (tg - t) / h, work)
                     t_out[n_out] = tg
                     _save_row(y_out, n_out, work)
-                    r_out[n_out] = _regime(sig, s)
+                    r_out[n_out] = _saved_code(sig, s)
                     n_out += 1
                 next_grid += 1
 
@@ -743,7 +758,7 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
             if save and n_out < cap:
                 t_out[n_out] = t
                 _save_row(y_out, n_out, y)
-                r_out[n_out] = regime_before
+                r_out[n_out] = _saved_code(sig, s)
                 n_out += 1
             a, av = _ground(loc, t)
             sig2, s2, kind, ok, impact, lost, ratio, top, short = apply_transition(
@@ -781,7 +796,7 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
             if save and n_out < cap and kind != EV_EXCEED:
                 t_out[n_out] = t
                 _save_row(y_out, n_out, y)
-                r_out[n_out] = _regime(sig, s)
+                r_out[n_out] = _saved_code(sig, s)
                 n_out += 1
             if status == STATUS_OVERTURNED:
                 peak_theta = max(peak_theta, abs(y[2]))
@@ -829,7 +844,7 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
     if save and status != STATUS_OVERTURNED:
         # Last grid point(s) reached exactly at t_end.
         n_out, next_grid = _hold(t_out, y_out, r_out, n_out, cap, next_grid, n_grid, t0, save_dt, t + 1e-9, y,
-                                 _regime(sig, s), t)
+                                 _saved_code(sig, s), t)
 
     summ[S_STATUS] = status
     summ[S_PEAK_ROTATION] = peak_theta

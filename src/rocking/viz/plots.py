@@ -168,7 +168,10 @@ def floor_motion(response) -> tuple[np.ndarray, np.ndarray]:
 
 
 def pivot_signs(response) -> np.ndarray:
-    """Active pivot S at each saved state: sign θ while rocking (sign θ̇ at θ = 0), else 0."""
+    """Active pivot S at each saved state: the solver's, else sign θ while rocking (sign θ̇ at
+    θ = 0), and 0 when not rocking."""
+    if getattr(response, "pivot", None) is not None:
+        return np.asarray(response.pivot, dtype=int)
     th = np.asarray(response.theta)
     thd = np.asarray(response.theta_dot)
     rocking = np.isin(response.regime, (Regime.ROCK, Regime.SLIDE_ROCK))
