@@ -1,0 +1,123 @@
+"""The compiled cores never index an array out of its bounds.
+
+Numba does not check indices by default: a write past the end of an array (a scratch vector one
+entry too short, a table filled past its capacity) corrupts whatever lies next in memory, and a
+run may still look right. Two mutants of `solver/compiled.py` did exactly that and survived the
+whole suite (bench/MUTATION.md, a4335bac: the scratch vector `gmin` two entries short;
+10e79e94: a sample saved past the table's capacity). Here the cores are compiled afresh with
+``NUMBA_BOUNDSCHECK=1`` (into a cache of their own, so that no unchecked machine code is
+reused) and run on cases that reach the ends of their tables: every event slot filled
+(max_events), runs with and without saved samples, an overturn, a sliding pedestal under a
+record with a vertical component, stacks of one to three blocks. An out-of-bounds index then
+raises ``IndexError`` and the script fails.
+
+Each case compiles the core it runs (40–90 s), in a subprocess.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import textwrap
+
+import pytest
+
+# The first lines prove that the flag took effect: an unchecked read past the end returns garbage
+# and raises nothing, and the test would then pass whatever the cores do.
+_PROBE = """
+import numpy as np
+from numba import njit
+
+@njit
+def _past_the_end(a):
+    return a[a.size]
+
+try:
+    _past_the_end(np.zeros(3))
+except IndexError:
+    pass
+else:
+    raise SystemExit("NUMBA_BOUNDSCHECK did not take effect")
+"""
+
+_SOLVER_CASES = """
+import numpy as np
+import rocking as rk
+from rocking.excitation.record import GroundMotion
+
+g = 9.81
+slender = rk.Statue(width=0.4, height=2.0, mass=50.0, restitution=0.9)
+alone = rk.System(statue=slender)
+for motion, options, kwargs, verdict in (
+    (rk.Harmonic(amplitude=0.3 * g, frequency=2.0, cycles=4), rk.Options(), {}, "did not overturn"),
+    (rk.Harmonic(amplitude=0.5 * g, frequency=0.8, cycles=4), rk.Options(), {}, "overturned"),
+    # every event slot filled: the run stops at max_events, the tables at their capacity
+    (rk.Harmonic(amplitude=0.3 * g, frequency=2.0, cycles=4), rk.Options(max_events=5), {}, "max_events"),
+    (rk.Harmonic(amplitude=0.3 * g, frequency=2.0, cycles=4), rk.Options(max_events=5), {"save": False},
+     "max_events"),
+    (rk.Harmonic(amplitude=0.3 * g, frequency=2.0, cycles=4), rk.Options(), {"save": False}, "did not overturn"),
+    (rk.Harmonic(amplitude=0.3 * g, frequency=2.0, cycles=4), rk.Options(save_dt=1.0), {}, "did not overturn"),
+):
+    r = rk.simulate(alone, motion, options=options, throw=False, **kwargs)
+    assert verdict in r.verdict + r.status, (verdict, r.verdict)
+    print(r.verdict)
+
+# a statue on a pedestal that slides, under a record-like motion with a vertical component
+t = np.round(np.arange(0.0, 6.0, 0.01), 10)
+motion = GroundMotion(time=t, values=4.0 * np.sin(2 * np.pi * 1.2 * t) * (t < 4.0),
+                      vertical=2.0 * np.sin(2 * np.pi * 3.0 * t) * (t < 4.0))
+pedestal = rk.Pedestal(mass=40.0, friction=rk.Friction(static=0.3, kinetic=0.25), width=0.6, height=0.5)
+for statue in (slender, rk.Statue(width=0.8, height=1.0, mass=30.0)):
+    r = rk.simulate(rk.System(statue=statue, pedestal=pedestal), motion, throw=False)
+    assert r.status in ("completed", "overturned"), r.status
+    print(r.verdict)
+# a block that slides and rocks at once
+r = rk.simulate(rk.System(statue=rk.Statue(width=0.6, height=1.2, mass=20.0,
+                                           friction=rk.Friction(static=0.55, kinetic=0.5))),
+                rk.Harmonic(amplitude=8.0, frequency=2.0, cycles=3), throw=False)
+assert 3 in r.regime, np.unique(r.regime)
+print(r.verdict)
+"""
+
+_STACK_CASES = """
+import rocking as rk
+from rocking.stack import Block, Interface, Stack, simulate_stack
+
+g = 9.81
+pedestal = Block(name="pedestal", width=0.8, height=0.5, mass=300.0)
+statue = Block(name="statue", width=0.3, height=1.2, mass=100.0)
+vase = Block(name="vase", width=0.15, height=0.4, mass=10.0)
+slides = Interface(friction=rk.Friction(static=0.3, kinetic=0.25))
+grips = Interface(friction=rk.Friction(static=0.6, kinetic=0.5))
+for stack, motion, options in (
+    (Stack(blocks=[statue], interfaces=[grips]), rk.Harmonic(amplitude=0.3 * g, frequency=1.5, cycles=3), rk.Options()),
+    (Stack(blocks=[pedestal, statue], interfaces=[slides, grips]),
+     rk.Harmonic(amplitude=0.35 * g, frequency=1.5, cycles=3), rk.Options()),
+    (Stack(blocks=[pedestal, statue, vase], interfaces=[slides, grips, grips]),
+     rk.Harmonic(amplitude=0.4 * g, frequency=2.0, cycles=3), rk.Options()),
+    (Stack(blocks=[pedestal, statue, vase], interfaces=[slides, grips, grips]),
+     rk.Harmonic(amplitude=0.4 * g, frequency=2.0, cycles=3), rk.Options(max_events=4)),
+):
+    r = simulate_stack(stack, motion, options=options)
+    print(r.status, r.verdict)
+"""
+
+
+def _run_with_bounds_checked(script: str, tmp_path) -> str:
+    env = dict(os.environ, NUMBA_BOUNDSCHECK="1", NUMBA_CACHE_DIR=str(tmp_path / "numba-cache"))
+    proc = subprocess.run([sys.executable, "-c", textwrap.dedent(_PROBE + script)], env=env,
+                          capture_output=True, text=True, timeout=1200)
+    assert proc.returncode == 0, proc.stdout[-2000:] + proc.stderr[-4000:]
+    return proc.stdout
+
+
+def test_the_solver_core_stays_inside_its_arrays(tmp_path):
+    out = _run_with_bounds_checked(_SOLVER_CASES, tmp_path)
+    assert out.count("\n") == 9
+
+
+def test_the_stack_engine_stays_inside_its_arrays(tmp_path):
+    out = _run_with_bounds_checked(_STACK_CASES, tmp_path)
+    assert out.count("\n") == 4
+    assert "max_events" in out.splitlines()[-1]
