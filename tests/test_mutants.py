@@ -1781,6 +1781,82 @@ def test_the_required_top_friction_covers_the_instant_after_an_impact():
     assert r.summary()["required_top_friction"] >= sampled * (1 - 1e-12)
 
 
+def test_the_required_top_friction_of_a_statue_that_overturns_stops_at_alpha():
+    """The required top friction is a design quantity while the statue can still come back,
+    |θ| ≤ α (README, summary keys); the statue toppling past α needs far more (|Px|/Py = 45 at
+    the fall, θ = π/2, in this run). Under a record sampled every 0.01 s the steps are short
+    and the fall is read off the dense output: the summary must still equal the largest ratio of
+    the saved samples with |θ| ≤ α (contact_forces, every 1 ms; samples and integration stages
+    see slightly different instants, hence 1e-5). Kills compiled.py:741 `py > 0.0 or |θ| ≤ α`
+    at an event's instant (the summary then said 45.07 in place of 0.2607)."""
+    from rocking.excitation.record import GroundMotion
+
+    statue = rk.Statue(width=0.3, height=1.2, mass=100.0)
+    pedestal = rk.Pedestal(mass=100.0, friction=rk.Friction(static=0.5, kinetic=0.4))
+    t = np.round(np.arange(0.0, 4.0, 0.01), 10)
+    record = GroundMotion(time=t, values=3.0 * np.sin(2 * np.pi * 0.5 * t))
+    r = rk.simulate(rk.System(statue=statue, pedestal=pedestal), record, options=rk.Options(save_dt=1e-3))
+    assert r.overturned
+    forces = r.contact_forces()
+    assert forces["top_friction_ratio"][-1] > 10.0  # the fall itself
+    upright = ((r.regime & 1) != 0) & (np.abs(r.theta) <= r.alpha) & (forces["Py"] > 0)
+    sampled = float(np.max(forces["top_friction_ratio"][upright]))
+    assert sampled == pytest.approx(0.2607, abs=1e-4)
+    assert r.summary()["required_top_friction"] == pytest.approx(sampled, rel=1e-5)
+
+
+@pytest.mark.parametrize("case", ["alone, harmonic", "alone, high frequency", "on a pedestal, record"])
+def test_the_peak_rotation_is_the_same_without_saved_samples_and_is_the_largest_sampled(case):
+    """Batch runs (spectra, fragility, design) save no samples, and the solver then builds a
+    step's dense output only where something needs it. The peak |θ| inside a step, where θ̇
+    changes sign, must still be found: the summary's peak_rotation with save=False must equal
+    the one with samples (the steps are the same: 1e-12), and both the largest |θ| of samples
+    every 0.1 ms (a turning point is at most 50 µs from a sample: |θ̈|·(50 µs)²/2 < 1e-7 rad).
+    Kills compiled.py:618 `y[3] > 1.0` (a turning point of a step that starts with
+    0 < θ̇ ≤ 1 rad/s missed without samples: 0.020306 in place of 0.020458 rad)."""
+    from rocking.excitation.record import GroundMotion
+
+    g = 9.81
+    statue = rk.Statue(width=0.4, height=2.0, mass=50.0, restitution=0.9)
+    t = np.round(np.arange(0.0, 6.0, 0.01), 10)
+    system, motion = {
+        "alone, harmonic": (rk.System(statue=statue), rk.Harmonic(amplitude=0.3 * g, frequency=2.0, cycles=4)),
+        "alone, high frequency": (rk.System(statue=statue), rk.Harmonic(amplitude=0.25 * g, frequency=3.0, cycles=4)),
+        "on a pedestal, record": (
+            rk.System(statue=statue, pedestal=rk.Pedestal(mass=40.0, friction=rk.Friction(static=0.3, kinetic=0.25))),
+            GroundMotion(time=t, values=2.5 * np.sin(2 * np.pi * 1.2 * t) * (t < 4.0))),
+    }[case]
+    sampled = rk.simulate(system, motion, options=rk.Options(save_dt=1e-4))
+    bare = rk.simulate(system, motion, save=False)
+    assert sampled.status == bare.status == "completed"
+    peak = sampled.summary()["peak_rotation"]
+    assert 0.01 < peak < sampled.alpha
+    assert bare.summary()["peak_rotation"] == pytest.approx(peak, rel=1e-12)
+    assert peak == pytest.approx(float(np.max(np.abs(sampled.theta))), abs=1e-7)
+
+
+def test_a_statue_released_tilted_and_turning_dissipates_its_initial_energy_and_reports_a_closed_balance():
+    """A statue alone on a still floor, released at θ = 0.05 rad turning at θ̇ = 0.3 rad/s, rocks
+    down to rest: its impacts dissipate exactly the energy it started with (sympy energy of the
+    initial state, `tests/oracles/lagrange.py`), and the balance the summary reports,
+    |E − E0 − W + D| over the energy scale, stays at the integration's accuracy (1e-9; 8e-11
+    measured over 59 impacts). Kills compiled.py:502 (E0 with θ̇ for θ: the balance error then
+    reads 0.23)."""
+    from oracles import lagrange
+    from oracles.energy import lagrange_params
+
+    from helpers import NO_MOTION
+
+    r = rk.simulate(rk.System(statue=_SLENDER), NO_MOTION, duration=20.0, initial_rotation=0.05,
+                    initial_angular_velocity=0.3, options=rk.Options(gravity=9.81))
+    assert r.status == "completed" and r.summary()["impacts"] > 5
+    params = lagrange_params(r.system, 9.81)
+    e0 = lagrange.energy(params, (0.0, 0.0, 0.05, 0.3)) - lagrange.energy(params, (0.0, 0.0, 0.0, 0.0), s=1)
+    assert r.energy["impact_dissipation"] == pytest.approx(e0, rel=1e-9)
+    assert r.energy["input_work"] == 0.0
+    assert r.energy["relative_balance_error"] < 1e-9
+
+
 def test_the_uplift_warning_falls_inside_the_uplift_seen_in_the_saved_samples():
     """A statue rocking on a 0.6 m × 0.8 m pedestal that slides, under 5 m/s². The saved samples
     (every 0.1 ms; Response.violations, from contact_forces) put the floor's pressure centre outside
