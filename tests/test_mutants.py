@@ -1857,6 +1857,47 @@ def test_a_statue_released_tilted_and_turning_dissipates_its_initial_energy_and_
     assert r.energy["relative_balance_error"] < 1e-9
 
 
+@pytest.mark.parametrize(("theta0", "theta_dot0"), [(0.05, 0.0), (0.0, 0.4), (0.03, -0.2)])
+def test_a_statue_released_on_either_side_moves_as_the_mirror_image(theta0, theta_dot0):
+    """Mirror symmetry of the initial state: released at (−θ0, −θ̇0) on a pedestal that slides,
+    under the mirrored floor motion (−a), the statue's θ, θ̇ and the pedestal's u, u̇ are the
+    negatives of the run from (θ0, θ̇0) under a, at every sample, and the events happen at the same
+    instants (1e-12: the two runs take mirrored steps, and every formula is odd or even in the
+    signs). Kills compiled.py:496 (the initial pivot −2 for a statue leaning to −x: the
+    equations of motion then read s = −2)."""
+    statue = rk.Statue(width=0.4, height=2.0, mass=50.0)
+    system = rk.System(statue=statue, pedestal=rk.Pedestal(mass=30.0, friction=rk.Friction(static=0.25, kinetic=0.2)))
+    runs = [rk.simulate(system, rk.Harmonic(amplitude=sign * 6.0, frequency=1.5, cycles=2), duration=2.5,
+                        initial_rotation=sign * theta0, initial_angular_velocity=sign * theta_dot0)
+            for sign in (1.0, -1.0)]
+    plus, minus = runs
+    assert plus.summary()["impacts"] >= 1 and plus.summary()["peak_sliding"] > 1e-3
+    assert plus.t.size == minus.t.size
+    for column in range(4):  # u, u̇, θ, θ̇, each to 1e-12 of its own range
+        scale = float(np.max(np.abs(plus.state[:, column])))
+        np.testing.assert_allclose(minus.state[:, column], -plus.state[:, column], rtol=0, atol=1e-12 * scale)
+    assert [e.time for e in minus.events] == pytest.approx([e.time for e in plus.events], abs=1e-12)
+
+
+def test_a_narrow_pedestal_that_uplifts_from_the_start_is_warned_from_the_start():
+    """A 0.5 m wide, 0.8 m tall pedestal held by friction under a statue, floor at 4 m/s² (cos form:
+    the crest at t = 0). The floor's inertial force on the pedestal itself, ½·h1·m1·a in its moment
+    balance, puts the pressure centre outside the base from the start: the saved samples (every
+    0.1 ms, `violations()`, from contact_forces) show uplift from t = 0 to 0.0378 s. The warning
+    must start inside that interval. Kills compiled.py:816 (the step end's floor acceleration read
+    from the vertical's column, 0 here: the first warning then came at 0.3074 s, the second
+    interval)."""
+    statue = rk.Statue(width=0.3, height=1.5, mass=100.0)
+    pedestal = rk.Pedestal(mass=100.0, width=0.5, height=0.8, friction=rk.Friction(static=2.0, kinetic=2.0))
+    r = rk.simulate(rk.System(statue=statue, pedestal=pedestal), rk.Harmonic(amplitude=4.0, frequency=1.5, cycles=3),
+                    options=rk.Options(save_dt=1e-4), duration=1.0)
+    spans = [(t0, t1) for name, t0, t1 in r.violations() if name == "pedestal uplift"]
+    assert spans[0][0] == 0.0 and spans[0][1] == pytest.approx(0.0378, abs=2e-4)
+    said = [w for w in r.warnings if "pedestal would uplift" in w]
+    t_warn = float(re.search(r"from t = ([0-9.]+) s", said[0]).group(1))
+    assert t_warn <= spans[0][1]
+
+
 def test_the_uplift_warning_falls_inside_the_uplift_seen_in_the_saved_samples():
     """A statue rocking on a 0.6 m × 0.8 m pedestal that slides, under 5 m/s². The saved samples
     (every 0.1 ms; Response.violations, from contact_forces) put the floor's pressure centre outside
