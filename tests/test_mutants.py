@@ -1898,6 +1898,32 @@ def test_a_narrow_pedestal_that_uplifts_from_the_start_is_warned_from_the_start(
     assert t_warn <= spans[0][1]
 
 
+def test_a_floor_dropping_faster_than_gravity_under_a_rocking_statue_is_warned_while_it_drops():
+    """A statue rocking on a pedestal under a record whose vertical component drops to −12 m/s²
+    (faster than g) from 0.99 s to 1.1 s: the floor's normal force and the statue's base force
+    vanish there, and the model (bodies in contact) no longer holds. The saved samples (every
+    0.1 ms, `violations()`) show both from 0.9982 s to 1.0918 s; each warning must say a time
+    inside that interval. Kills compiled.py:828 (`not isnan`: the first time never recorded,
+    the floor warning never raised)."""
+    from rocking.excitation.record import GroundMotion
+
+    statue = rk.Statue(width=0.3, height=1.5, mass=100.0)
+    pedestal = rk.Pedestal(mass=50.0, friction=rk.Friction(static=0.5, kinetic=0.4))
+    t = np.round(np.arange(0.0, 3.0, 0.01), 10)
+    record = GroundMotion(time=t, values=4.0 * np.sin(2 * np.pi * 1.5 * t),
+                          vertical=np.where((t >= 1.0) & (t < 1.1), -12.0, 0.0))
+    r = rk.simulate(rk.System(statue=statue, pedestal=pedestal), record, options=rk.Options(save_dt=1e-4))
+    sampled = dict((name, (t0, t1)) for name, t0, t1 in r.violations())
+    for check, words in (("floor normal force ≤ 0", "the floor normal force reached zero"),
+                         ("statue lift-off (base force ≤ 0)", "the statue's base force reached zero")):
+        t0, t1 = sampled[check]
+        assert t0 == pytest.approx(0.9982, abs=2e-4) and t1 == pytest.approx(1.0918, abs=2e-4)
+        said = [w for w in r.warnings if words in w]
+        assert len(said) == 1, r.warnings
+        t_warn = float(re.search(r"from t = ([0-9.]+) s", said[0]).group(1))
+        assert t0 - 1e-4 <= t_warn <= t1, (check, t_warn)
+
+
 def test_the_uplift_warning_falls_inside_the_uplift_seen_in_the_saved_samples():
     """A statue rocking on a 0.6 m × 0.8 m pedestal that slides, under 5 m/s². The saved samples
     (every 0.1 ms; Response.violations, from contact_forces) put the floor's pressure centre outside
