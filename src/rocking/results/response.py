@@ -114,9 +114,12 @@ class Response:
     Time series (sampled on a uniform grid merged with the event instants; at an event both the
     state before and after appear with the same time): ``t`` (s), ``u`` and ``u_dot`` (sliding of
     the body on the floor relative to the floor, m and m/s), ``theta`` and ``theta_dot`` (statue,
-    rad and rad/s), ``regime`` (:class:`Regime` codes). ``duration`` is the longest the run could
-    last (s): the requested duration, or the motion plus ``free_time_limit``; ``end_time`` is when
-    it ended.
+    rad and rad/s), ``regime`` (:class:`Regime` codes), ``pivot`` (+1: the statue rocks on its +x
+    corner, −1: on its −x corner, 0: it does not rock) and ``slip_direction`` (the sign of the
+    sliding velocity, 0: no sliding), the last two as the solver had them (at the onset of
+    rocking θ = θ̇ = 0 and of sliding u̇ = 0: the state alone does not say). ``duration`` is the
+    longest the run could last (s): the requested duration, or the motion plus
+    ``free_time_limit``; ``end_time`` is when it ended.
     """
 
     system: Any
