@@ -477,8 +477,8 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
     d_impact = 0.0
     steps = 0
     rejected = 0
-    peak_theta = 0.0
-    peak_u = 0.0
+    peak_theta = abs(y[2])  # a statue released tilted: its start counts (the first step may turn away)
+    peak_u = abs(y[0])
     top_ratio = 0.0
     impact_floor_ratio = 0.0
     energy_scale = 0.0
