@@ -43,6 +43,7 @@ TIME_TOL = 1e-9  # s, event times (measured ≤ 2e-10)
 ROW_TOL = 1e-8  # m/s, rad/s, J: the other fields of an event row (measured ≤ 3e-10)
 THETA_TOL = 1e-8  # rad, θ on the grid (measured ≤ 1e-10)
 U_TOL = 1e-8  # m, u on the grid
+VELOCITY_TOL = 1e-7  # rad/s, m/s: θ̇ and u̇ on the grid (measured ≤ 1e-8; ≤ 1e-9 but in one test)
 
 # b = 0.2 m, h = 1 m (tan α = 0.2), rigid, frictionless floor
 BLOCK = rk.Statue(width=0.4, height=2.0, mass=1.0)
@@ -79,6 +80,12 @@ def _assert_grid_agrees(c, r, dt, *, skip=0):
     np.testing.assert_allclose(r["t"], tc, rtol=0, atol=1e-12)
     np.testing.assert_allclose(r["theta"], thc, rtol=0, atol=THETA_TOL)
     np.testing.assert_allclose(r["u"], uc, rtol=0, atol=U_TOL)
+    # the velocities of the same rows (on_grid keeps the first row at a grid time)
+    rows = np.flatnonzero(np.isin(c.t, tc))
+    _, first = np.unique(c.t[rows], return_index=True)
+    rows = rows[first]
+    np.testing.assert_allclose(r["theta_dot"], c.theta_dot[rows], rtol=0, atol=VELOCITY_TOL)
+    np.testing.assert_allclose(r["u_dot"], c.u_dot[rows], rtol=0, atol=VELOCITY_TOL)
 
 
 def _assert_summary_agrees(c, r):
@@ -446,7 +453,8 @@ def test_arguments_as_simulate():
     non-positive duration are rejected as by ``simulate``.
 
     Kills crosscheck.py:549 (``/`` for ``*``: system/motion positional-only, duration positional),
-    crosscheck.py:586 (``0.5/π`` = 0.16 rad as the tilt limit), crosscheck.py:584 (``t_end <= 1``)."""
+    crosscheck.py:586 (``0.5/π`` = 0.16 rad as the tilt limit), crosscheck.py:584 (``t_end <= 1``),
+    crosscheck.py:555 (the default ``save_dt`` 1.01 s)."""
     b, h = 0.4, 1.0
     block = rk.Statue(width=2 * b, height=2 * h, mass=1.0)
     quiet = rk.RectanglePulse(amplitude=0.0, width=3.0)
@@ -457,6 +465,8 @@ def test_arguments_as_simulate():
         simulate_crosscheck(rk.System(statue=block), quiet, 0.9)  # noqa: the point of the test
     with pytest.raises(TypeError):
         rk.simulate(rk.System(statue=block), quiet, 0.9)
+    # the default grid is simulate's: every 0.01 s (91 points over 0.9 s)
+    assert r["t"].size == 91 and r["t"][1] == 0.01
     for bad in ({"initial_rotation": 0.5 * math.pi}, {"initial_rotation": -2.0}, {"duration": 0.0}):
         kw = {"duration": 0.9, **bad}
         with pytest.raises(ValueError):
