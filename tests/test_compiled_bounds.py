@@ -11,15 +11,18 @@ reused) and run on cases that reach the ends of their tables: every event slot f
 record with a vertical component, stacks of one to three blocks. An out-of-bounds index then
 raises ``IndexError`` and the script fails.
 
-Each case compiles the core it runs (40–90 s), in a subprocess.
+Each case compiles the core it runs (40–90 s), in a subprocess. The cold start is also where
+the compilation notices of `rocking.solver.warmup` show: they are checked there too.
 """
 
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
 import textwrap
+import time
 
 import pytest
 
@@ -82,7 +85,10 @@ print(r.verdict)
 
 _STACK_CASES = """
 import rocking as rk
+from rocking.solver.warmup import ensure_stack_compiled
 from rocking.stack import Block, Interface, Stack, simulate_stack
+
+ensure_stack_compiled()  # as the command line does before a stack run: the notice, then the work
 
 g = 9.81
 pedestal = Block(name="pedestal", width=0.8, height=0.5, mass=300.0)
@@ -104,20 +110,45 @@ for stack, motion, options in (
 """
 
 
-def _run_with_bounds_checked(script: str, tmp_path) -> str:
+def _run_with_bounds_checked(script: str, tmp_path, what: str) -> str:
+    """Run ``script`` on a cold cache of its own; return its stdout. The cold start is also where
+    the compilation notice shows (`rocking.solver.warmup`): said once before and once after,
+    with a time no longer than the whole process took. A second process on the now warm cache
+    must compile nothing and say nothing."""
     env = dict(os.environ, NUMBA_BOUNDSCHECK="1", NUMBA_CACHE_DIR=str(tmp_path / "numba-cache"))
+    start = time.perf_counter()
     proc = subprocess.run([sys.executable, "-c", textwrap.dedent(_PROBE + script)], env=env,
                           capture_output=True, text=True, timeout=1200)
+    wall = time.perf_counter() - start
     assert proc.returncode == 0, proc.stdout[-2000:] + proc.stderr[-4000:]
+    assert proc.stderr.count(f"rocking: compiling the {what} (first run on this machine") == 1, proc.stderr
+    said = re.findall(rf"rocking: {what} compiled in (\d+) s", proc.stderr)
+    assert len(said) == 1 and int(said[0]) <= wall + 0.5, (said, wall)
+    ensure = "ensure_compiled" if what == "solver" else "ensure_stack_compiled"
+    warm = subprocess.run([sys.executable, "-c", f"from rocking.solver.warmup import {ensure}; assert {ensure}() is None"],
+                          env=env, capture_output=True, text=True, timeout=300)
+    assert warm.returncode == 0 and "compil" not in warm.stderr, warm.stderr
     return proc.stdout
 
 
 def test_the_solver_core_stays_inside_its_arrays(tmp_path):
-    out = _run_with_bounds_checked(_SOLVER_CASES, tmp_path)
+    out = _run_with_bounds_checked(_SOLVER_CASES, tmp_path, "solver")
     assert out.count("\n") == 9
 
 
 def test_the_stack_engine_stays_inside_its_arrays(tmp_path):
-    out = _run_with_bounds_checked(_STACK_CASES, tmp_path)
+    out = _run_with_bounds_checked(_STACK_CASES, tmp_path, "stack engine")
     assert out.count("\n") == 4
     assert "max_events" in out.splitlines()[-1]
+
+
+def test_the_warm_up_command_compiles_both_cores_and_exits_0(monkeypatch):
+    """`scripts/env.sh` runs `raise SystemExit(main())` under `set -e`: main must ask for both cores
+    and return 0."""
+    from rocking.solver import warmup
+
+    asked = []
+    monkeypatch.setattr(warmup, "ensure_compiled", lambda **_: asked.append("solver"))
+    monkeypatch.setattr(warmup, "ensure_stack_compiled", lambda **_: asked.append("stack"))
+    assert warmup.main() == 0
+    assert asked == ["solver", "stack"]
