@@ -547,8 +547,10 @@ def try_mutant(work: Work, job: str, tests: list[str], current: bool = False) ->
     running in the main copy meanwhile. Returns pytest's exit code (0: the mutant survives).
 
     ``current``: apply it to the repository's source as it is now instead of the copy's (to
-    re-check a survivor after a fix elsewhere, without dropping the sessions). The mutated module
-    itself must not have changed since the copy, or the mutant's position would be wrong."""
+    re-check a survivor after a fix elsewhere, without dropping the sessions). If the mutated
+    module itself has changed since the copy, the mutant's position may be wrong: it is then
+    placed by its text instead (the one line it changes must occur exactly once in today's
+    module), or refused."""
     from cosmic_ray.mutating import apply_mutation
     from cosmic_ray.plugins import get_operator
 
@@ -556,10 +558,11 @@ def try_mutant(work: Work, job: str, tests: list[str], current: bool = False) ->
     tree, cache = work.root / "try-tree", work.root / "numba-try"
     for p in (tree, cache):
         shutil.rmtree(p, ignore_errors=True)
+    by_text = None
     if current:
         relative = Path("rocking") / module
         if (REPO / "src" / relative).read_bytes() != (work.pristine / relative).read_bytes():
-            raise SystemExit(f"{module} has changed since the copy: its mutants cannot be placed on the current source")
+            by_text = _mutated_line(work, item, relative)
         shutil.copytree(REPO / "src", tree / "src", ignore=shutil.ignore_patterns("__pycache__"))
     else:
         shutil.copytree(work.pristine, tree / "src")
@@ -575,14 +578,39 @@ def try_mutant(work: Work, job: str, tests: list[str], current: bool = False) ->
         args.append(str(dst) + (f"::{node}" if node else ""))
     m = item.mutations[0]
     target = tree / "src" / Path(m.module_path).relative_to(work.tree / "src")
-    _, code = apply_mutation(target, get_operator(m.operator_name)(**(m.operator_args or {})), m.occurrence)
-    if code is None:
-        raise SystemExit("mutation could not be applied (has the module changed since the session began?)")
+    if by_text is not None:
+        before, after = by_text
+        target.write_text(target.read_text().replace(before, after))
+    else:
+        _, code = apply_mutation(target, get_operator(m.operator_name)(**(m.operator_args or {})), m.occurrence)
+        if code is None:
+            raise SystemExit("mutation could not be applied (has the module changed since the session began?)")
     print(describe(item), flush=True)
     cmd = _pytest_args(work, module, args)
     code = subprocess.run(cmd, cwd=tree, env=work.env(cache, tree)).returncode
     print("survives" if code == 0 else f"killed (pytest exit {code})")
     return code
+
+
+def _mutated_line(work: Work, item, relative: Path) -> tuple[str, str]:
+    """(line before, line after) of a mutant that changes one line of the copy's module, if
+    that line occurs exactly once in the repository's current module; else refuse."""
+    from cosmic_ray.mutating import apply_mutation
+    from cosmic_ray.plugins import get_operator
+
+    m = item.mutations[0]
+    with tempfile.TemporaryDirectory() as scratch:
+        copy = Path(scratch) / relative.name
+        shutil.copy2(work.pristine / relative, copy)
+        apply_mutation(copy, get_operator(m.operator_name)(**(m.operator_args or {})), m.occurrence)
+        old = (work.pristine / relative).read_text().splitlines(keepends=True)
+        new = copy.read_text().splitlines(keepends=True)
+    changed = [(a, b) for a, b in zip(old, new) if a != b]
+    current = (REPO / "src" / relative).read_text()
+    if len(old) != len(new) or len(changed) != 1 or current.count(changed[0][0]) != 1:
+        raise SystemExit(f"{relative} has changed since the copy, and this mutant's line cannot be found "
+                         "in it unambiguously: it cannot be placed on the current source")
+    return changed[0]
 
 
 def _kept(mutation, line: str) -> bool:
@@ -644,7 +672,7 @@ def main(argv=None) -> int:
     p.add_argument("job")
     p.add_argument("tests", nargs="+", help="test files or node ids, relative to the repository")
     p.add_argument("--current", action="store_true",
-                   help="mutate the repository's current source, not the copy's (the module must be unchanged)")
+                   help="mutate the repository's current source, not the copy's (a changed module: placed by the line's text)")
     p = sub.add_parser("deps", help="which compiled modules a mutant of MODULE recompiles")
     p.add_argument("module")
     p = sub.add_parser("_test", help=argparse.SUPPRESS)
