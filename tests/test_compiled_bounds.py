@@ -2,9 +2,9 @@
 
 Numba does not check indices by default: a write past the end of an array (a scratch vector one
 entry too short, a table filled past its capacity) corrupts whatever lies next in memory, and a
-run may still look right. Two mutants of `solver/compiled.py` did exactly that and survived the
-whole suite (bench/MUTATION.md, a4335bac: the scratch vector `gmin` two entries short;
-10e79e94: a sample saved past the table's capacity). Here the cores are compiled afresh with
+run may still look right. A mutant of `solver/compiled.py` did exactly that and survived the
+whole suite (bench/MUTATION.md, a4335bac: the scratch vector `gmin` two entries short, written
+and read past its end). Here the cores are compiled afresh with
 ``NUMBA_BOUNDSCHECK=1`` (into a cache of their own, so that no unchecked machine code is
 reused) and run on cases that reach the ends of their tables: every event slot filled
 (max_events), runs with and without saved samples, an overturn, a sliding pedestal under a
@@ -24,7 +24,6 @@ import sys
 import textwrap
 import time
 
-import pytest
 
 # The first lines prove that the flag took effect: an unchecked read past the end returns garbage
 # and raises nothing, and the test would then pass whatever the cores do.
