@@ -82,16 +82,17 @@ MODULES: dict[str, list[str]] = {
     "excitation/record.py": ["test_mutants.py", "test_records.py", "test_config.py", "test_single_block_rocking.py"],
     "solver/compiled.py": [
         "test_mutants.py", "test_fast_paths.py", "test_single_block_rocking.py", "test_sliding_and_slide_rock.py",
-        "test_statue_on_pedestal.py", "test_integrator_crosscheck.py", "test_run_until_rest.py", "test_interrupts.py",
+        "test_statue_on_pedestal.py", "test_integrator_crosscheck.py", "test_crosscheck_mutants.py",
+        "test_run_until_rest.py", "test_interrupts.py", "test_compiled_bounds.py",
     ],
-    "solver/crosscheck.py": ["test_integrator_crosscheck.py"],
+    "solver/crosscheck.py": ["test_integrator_crosscheck.py", "test_crosscheck_mutants.py"],
     "io/records.py": ["test_mutants.py", "test_records.py", "test_fuzz_inputs.py", "test_config.py"],
     "models/regimes.py": ["test_mutants.py", "test_single_block_rocking.py", "test_statue_on_pedestal.py", "test_run_until_rest.py"],
     "excitation/base.py": ["test_mutants.py", "test_floor_signals.py", "test_single_block_rocking.py", "test_records.py",
                            "test_integrator_crosscheck.py"],
     "excitation/_checks.py": ["test_mutants.py", "test_input_errors.py", "test_config.py", "test_fuzz_inputs.py"],
     "solver/signals.py": ["test_mutants.py", "test_interrupts.py"],
-    "solver/warmup.py": ["test_install.py", "test_cli.py"],
+    "solver/warmup.py": ["test_compiled_bounds.py", "test_install.py", "test_cli.py"],
     "solver/__init__.py": ["test_install.py", "test_single_block_rocking.py"],
     # The stack engine (issue 11): its own tests first, then the cross-checks against the
     # two-body solver and the Moreau–Jean solver, then the studies that read its summaries.
