@@ -135,11 +135,11 @@ class Response:
     duration_given: bool = False  # True: ``duration`` was asked for; False: it is the free-motion cap
     #: Per sample, the signs of the regime as the solver had them: ``pivot``, the sign of the
     #: rotation the statue rocks towards (0: not rocking), and ``slip_direction``, that of the
-    #: sliding velocity (0: not sliding). None: inferred from the signs of θ, θ̇ and u̇, which is
-    #: wrong at the onset of rocking (θ = θ̇ = 0) or sliding (u̇ = 0), and at a sample where θ
-    #: crossed 0 by rounding just before an impact.
-    pivot: np.ndarray | None = field(default=None, repr=False)
-    slip_direction: np.ndarray | None = field(default=None, repr=False)
+    #: sliding velocity (0: not sliding). Not inferable from the state: at the onset of rocking
+    #: θ = θ̇ = 0, at that of sliding u̇ = 0, and just before an impact θ may have crossed 0 by
+    #: rounding.
+    pivot: np.ndarray = field(repr=False)
+    slip_direction: np.ndarray = field(repr=False)
 
     # -- time series -----------------------------------------------------------------------
     @property
@@ -284,13 +284,7 @@ class Response:
 
     # -- the model's assumptions along the run (derivation §3.5) ---------------------------
     def _regime_signs(self):
-        th, thd, ud = self.theta, self.theta_dot, self.u_dot
-        if self.pivot is not None and self.slip_direction is not None:
-            return np.asarray(self.slip_direction, dtype=int), np.asarray(self.pivot, dtype=int)
-        sig = np.where(np.isin(self.regime, (Regime.SLIDE, Regime.SLIDE_ROCK)), np.sign(ud), 0).astype(int)
-        rock = np.isin(self.regime, (Regime.ROCK, Regime.SLIDE_ROCK))
-        s = np.where(rock, np.where(th != 0, np.sign(th), np.sign(thd)), 0).astype(int)
-        return sig, s
+        return np.asarray(self.slip_direction, dtype=int), np.asarray(self.pivot, dtype=int)
 
     def contact_forces(self) -> dict[str, np.ndarray]:
         """Forces at the saved times, N: the floor's normal force ``N`` and friction ``F`` on the

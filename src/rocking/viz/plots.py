@@ -168,15 +168,8 @@ def floor_motion(response) -> tuple[np.ndarray, np.ndarray]:
 
 
 def pivot_signs(response) -> np.ndarray:
-    """Active pivot S at each saved state: the solver's, else sign θ while rocking (sign θ̇ at
-    θ = 0), and 0 when not rocking."""
-    if getattr(response, "pivot", None) is not None:
-        return np.asarray(response.pivot, dtype=int)
-    th = np.asarray(response.theta)
-    thd = np.asarray(response.theta_dot)
-    rocking = np.isin(response.regime, (Regime.ROCK, Regime.SLIDE_ROCK))
-    s = np.where(th != 0.0, np.sign(th), np.sign(thd))
-    return np.where(rocking, s, 0.0).astype(int)
+    """Active pivot S at each saved state (+1, −1; 0 when not rocking), as the solver had it."""
+    return np.asarray(response.pivot, dtype=int)
 
 
 def energy_series(response) -> np.ndarray:
