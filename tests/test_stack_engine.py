@@ -754,3 +754,123 @@ def test_a_block_flush_with_the_edge_below(offset):
         assert abs(r.blocks[1]["residual_sliding"] + 0.2) < 1e-9
     else:
         assert r.end_time == 0.0 and r.blocks[1]["peak_sliding"] < 1e-12
+
+
+# -- three contact configurations of the random stacks that used to stop the run (2026-11-24) --
+def _independent_energy(stack, r, gravity=9.80665):
+    """Kinetic + potential energy of every saved row from the poses and velocities alone, J
+    (uniform rectangles: J = m(w² + h²)/12 about the centre)."""
+    e = np.zeros(len(r.t))
+    for k, b in enumerate(stack.blocks):
+        inertia = b.mass * (b.width ** 2 + b.height ** 2) / 12.0
+        v = r.velocity[:, k]
+        e += 0.5 * b.mass * (v[:, 0] ** 2 + v[:, 1] ** 2) + 0.5 * inertia * v[:, 2] ** 2 + b.mass * gravity * r.pose[:, k, 1]
+    return e
+
+
+def test_a_slipping_interface_that_rocks_onto_the_lower_blocks_corner_keeps_its_slip():
+    """A squat block slipping flat on a narrower one rocks onto the lower block's corner at
+    t = 2.9600 s. There ȧ is measured along the upper block's face, so its sign flips: the slip
+    direction was checked before the re-anchoring and kept the old sign, the stick guard fired at
+    once and zeroed a 0.19 m/s slip: 21 J left the stack outside the ledger (computed here from
+    the poses alone: off by 5.6 % of its scale, 379 J). Now it balances to the solver's accuracy;
+    1e-6 of the scale is 5e4 times below the old error."""
+    from rocking.io.records import read_record
+
+    stack = Stack(
+        blocks=(Block(width=0.9200334315907671, height=0.7710862395509412, mass=51.555356641389366),
+                Block(width=0.7116576603553549, height=0.8107119651341745, mass=98.87151070441959,
+                      offset=-0.00023138091603017164),
+                Block(width=0.9149862647005681, height=0.38290529011143615, mass=20.70762319469544,
+                      offset=0.08894091111972105)),
+        interfaces=(Interface(restitution=0.6909035055928314),
+                    Interface(friction=Friction(static=0.44821744559718046, kinetic=0.35803463422531057)),
+                    Interface(restitution=0.8719289460103321)))
+    motion = read_record("Northridge1994_RinaldiReceivingSta_228").trimmed(15.0).scaled(1.1117499960497195)
+    r = simulate_stack(stack, motion, duration=3.0, options={"save_dt": 0.005})
+    assert r.status == "still_moving"  # (stopped at 3 s, past the event)
+    assert np.any(np.abs(r.events[:, 0] - 2.96003) < 1e-5)  # the re-anchoring still happens
+    e = _independent_energy(stack, r)
+    balance = e - e[0] - r.input_work + r.friction_loss + r.impact_loss
+    scale = np.max(np.abs(r.input_work)) + np.max(np.abs(e - e[0]))
+    assert np.max(np.abs(balance)) <= 1e-6 * scale
+
+
+def test_an_impact_whose_restitution_has_no_consistent_mode_restitutes_less():
+    """A light wide block (4.7 kg) rocks on a heavy slender one (100 kg, restitution 0.52) that
+    lands at t = 0.28855 s. With the restitution couple, every contact mode breaks a condition:
+    the upper block's corner would have to pull, and released it would sink. The run stopped
+    "inconsistent". The couple is now scaled to the largest fraction that leaves a consistent mode
+    (docs/theory/stack.md §6), said in the block summary; the run reaches a verdict, the impact
+    loses energy, and the ledger balances to 1e-8 of its scale."""
+    stack = Stack(
+        blocks=(Block(width=0.26007028406663035, height=0.9016335890884895, mass=100.1425696337417),
+                Block(width=1.1019054673202364, height=0.5644802266627765, mass=4.7490804296984725,
+                      offset=-0.09751811452286807)),
+        interfaces=(Interface(friction=Friction(static=0.49818360889138025, kinetic=0.42634535867136003),
+                              restitution=0.5197764079279189),
+                    Interface()))
+    motion = rocking.Harmonic(amplitude=2.3907747227686778, frequency=1.9570915796337518, cycles=5)
+    r = simulate_stack(stack, motion, options={"save_dt": 0.005})
+    assert r.status in ("completed", "overturned")
+    assert r.blocks[0]["restitution_reduced_time"] == pytest.approx(0.28855257, abs=1e-7)
+    assert r.blocks[1]["restitution_reduced_time"] is None
+    at = r.events[(np.abs(r.events[:, 0] - 0.28855257) < 1e-7) & (r.events[:, 2] == -1)]
+    assert len(at) == 1 and at[0, 5] > 0.0
+    e = _independent_energy(stack, r)
+    balance = e - e[0] - r.input_work + r.friction_loss + r.impact_loss
+    assert np.max(np.abs(balance)) <= 1e-8 * (np.max(np.abs(r.input_work)) + np.max(np.abs(e - e[0])))
+    assert _deepest_sink(r) > -1e-9
+
+
+def test_an_impact_that_would_make_a_corner_pull_holds_it():
+    """A heavy statue (300 kg) lands on a small plinth while a light vase that never slips rocks
+    on it: with the statue's interface slipping, the vase's corner would have to pull, and
+    released it would sink (Painlevé's paradox at the impulse level; no restitution couple here).
+    The run stopped "inconsistent" at t = 0.51593 s. The contacts are now held, as at the
+    acceleration level, and the instant is reported as ``tension_held_time``; the impact loses
+    energy and the ledger balances to 1e-8."""
+    stack = Stack(
+        blocks=(Block(width=0.41161026205673856, height=0.27219809802625505, mass=20.634437136930057),
+                Block(width=0.9162121449412373, height=1.4951181658882087, mass=299.61879296965503,
+                      offset=0.07326801546552494),
+                Block(width=0.88608334073155, height=1.5341376989607238, mass=12.689318668760938,
+                      offset=-0.08558795447225663)),
+        interfaces=(Interface(), Interface(friction=Friction(static=0.5363894790280657, kinetic=0.5292902329141796)),
+                    Interface()))
+    motion = rocking.SinePulse(amplitude=7.895100409482686, frequency=1.6783673356715663)
+    r = simulate_stack(stack, motion, options={"save_dt": 0.005})
+    assert r.status in ("completed", "overturned")
+    assert r.blocks[2]["tension_held_time"] == pytest.approx(0.51592601, abs=1e-7)
+    at = r.events[(np.abs(r.events[:, 0] - 0.51592601) < 1e-7) & (r.events[:, 2] == -1)]
+    assert len(at) == 1 and at[0, 5] > 0.0
+    e = _independent_energy(stack, r)
+    balance = e - e[0] - r.input_work + r.friction_loss + r.impact_loss
+    assert np.max(np.abs(balance)) <= 1e-8 * (np.max(np.abs(r.input_work)) + np.max(np.abs(e - e[0])))
+    assert _deepest_sink(r) > -1e-9
+
+
+def test_an_impact_that_leaves_a_block_lifting_slower_than_rest_lands_it_flat():
+    """A slender block (restitution 0.73) under a wide light one settles after the record with
+    micro-impacts. At t = 5.99972 s one of them left it lifting flat off the floor at 5e-9 m/s:
+    the gap of its other corner cannot open that slowly as far as the positions resolve, so the
+    same impact came again at the same instant, 53 times, and the run stopped "inconsistent".
+    The rest rule of impacts now covers it: a lift slower than rest_velocity × the block's size
+    lands the block flat (docs/theory/stack.md §6). The stack comes to rest, and the ledger,
+    computed here from the poses, balances to 1e-8 of its scale."""
+    from rocking.io.records import read_record
+
+    stack = Stack(
+        blocks=(Block(width=0.3087034124741205, height=1.2593459751579352, mass=89.7458514333603),
+                Block(width=1.1322820547559966, height=0.4868139921045829, mass=6.958786058694237,
+                      offset=-0.01789593109620298)),
+        interfaces=(Interface(friction=Friction(static=0.5249476748842593, kinetic=0.4718581802264159),
+                              restitution=0.7267251031146879),
+                    Interface(friction=Friction(static=0.5117062651666293, kinetic=0.43248508265664026))))
+    motion = read_record("Northridge1994_RinaldiReceivingSta_228").trimmed(15.0).scaled(0.3464323381962823)
+    r = simulate_stack(stack, motion, options={"save_dt": 0.005, "max_events": 5000})
+    assert r.status == "completed" and not r.overturned
+    e = _independent_energy(stack, r)
+    balance = e - e[0] - r.input_work + r.friction_loss + r.impact_loss
+    assert np.max(np.abs(balance)) <= 1e-8 * (np.max(np.abs(r.input_work)) + np.max(np.abs(e - e[0])))
+    assert _deepest_sink(r) > -1e-9

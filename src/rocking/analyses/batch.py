@@ -38,14 +38,14 @@ Case = tuple[System | Stack, AbstractMotion]
 STACK_RUN_FIELDS = ("status", "end_time", "impacts", "energy_balance_error", "last_event_block")
 STACK_BLOCK_FIELDS = ("overturned", "overturn_time", "peak_rotation", "peak_absolute_rotation", "peak_sliding",
                       "residual_sliding", "lifted_off_time", "first_rocking_time", "first_sliding_time",
-                      "tension_held_time", "past_edge_time")
+                      "tension_held_time", "past_edge_time", "restitution_reduced_time")
 STACK_INTERFACE_FIELDS = ("required_friction", "slip_path", "impacts")
 #: The top-level keys of a stack summary taken from its top block (StackResponse.summary).
 _STACK_TOP_KEYS = ("overturned", "overturn_time", "peak_rotation", "peak_sliding", "residual_sliding",
                    "first_rocking_time", "first_sliding_time", "lifted_off_time")
 _BLOCK_UNITS = {"overturn_time": "s", "peak_rotation": "rad", "peak_absolute_rotation": "rad", "peak_sliding": "m",
                 "residual_sliding": "m", "lifted_off_time": "s", "first_rocking_time": "s", "first_sliding_time": "s",
-                "tension_held_time": "s", "past_edge_time": "s"}
+                "tension_held_time": "s", "past_edge_time": "s", "restitution_reduced_time": "s"}
 
 
 def stack_raw_size(n_blocks: int) -> int:

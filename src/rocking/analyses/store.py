@@ -539,7 +539,7 @@ def run_stored(
     carries only the motions its runs use (a record is sent once per chunk, not once per run).
     With ``folder`` the study resumes where it stopped; see :class:`ChunkStore`.
     """
-    from .batch import pad_rows, spec_kind
+    from .batch import STACK_BLOCK_FIELDS, STACK_INTERFACE_FIELDS, STACK_RUN_FIELDS, pad_rows, spec_kind
 
     runs = list(runs)
     if not runs:
@@ -556,7 +556,9 @@ def run_stored(
     store = None
     if folder is not None:
         fp = fingerprint({"study": study, "runs": runs, "motions": dict(motions), "options": options,
-                          "chunk_size": size, "version": _version()})
+                          "chunk_size": size, "version": _version(),
+                          # a store written with another layout of the raw rows is not resumed
+                          "stack_layout": (STACK_RUN_FIELDS, STACK_BLOCK_FIELDS, STACK_INTERFACE_FIELDS)})
         store = ChunkStore(folder, study=study, fingerprint=fp, n_chunks=len(payloads), meta=meta, fresh=fresh)
     parts = run_chunks(_run_runs, payloads, store=store, workers=workers, sizes=[len(r) for r in pieces],
                        progress=progress)

@@ -235,6 +235,10 @@ def _warnings(response: Any, found: list[Check]) -> list[str]:
             out.append(f"From t = {b['tension_held_time']:.3f} s the contact under {block_label(response.stack, k)} "
                        "carried a small tension (Painlevé's paradox of a face that never slips: the model holds the "
                        "contact until it pushes again).")
+        if b.get("restitution_reduced_time") is not None:
+            out.append(f"At t = {b['restitution_reduced_time']:.3f} s an impact under {block_label(response.stack, k)} "
+                       "restituted less than its coefficient asks: with the full rebound no contact mode was "
+                       "consistent (a block resting on it would have had to pull on its corner).")
     return out + [c.warning for c in found if c.result == FAIL and c.warning]
 
 

@@ -43,6 +43,7 @@ from .modes import (
     SELECT_HELD,
     OPEN,
     ROCK,
+    SELECT_NONE,
     SELECT_OK,
     VELOCITY,
     corner_x,
@@ -83,10 +84,11 @@ EVENT_FOLLOWS = -2  # another interface's mode changed at an event
 
 # Summary per block: overturn time, peak |φ|, peak |slip|, final slip, lift-off time, first
 # rocking time, first sliding time, largest required friction ratio of its interface, total
-# slip path.
+# slip path, peak |Θ|, first time its contact was held in tension, first time an impact of its
+# interface had its restitution reduced.
 (B_OVERTURN, B_PEAK_PHI, B_PEAK_SLIP, B_FINAL_SLIP, B_LIFTOFF, B_FIRST_ROCK, B_FIRST_SLIDE, B_MU_REQ,
- B_SLIP_PATH, B_PEAK_ABS_THETA, B_HELD) = range(11)
-N_BLOCK_SUMMARY = 11
+ B_SLIP_PATH, B_PEAK_ABS_THETA, B_HELD, B_RESTITUTION_CUT) = range(12)
+N_BLOCK_SUMMARY = 12
 
 
 @njit(cache=True, _nrt=False)
@@ -987,6 +989,64 @@ def _slide_direction(ends, anchor, k, zd, sigma):
 
 
 @njit(cache=True)
+def _mark_pulling(P, ends, anchor, nstate, z, lam, tol, t, summ):
+    """Note t as the first instant a contact was held in tension (B_HELD) on every interface
+    whose normal force or impulse ``lam`` pulls by more than ``tol``."""
+    for j in range(P.shape[0]):
+        if nstate[j] == FLAT:
+            n_a, n_o = flat_forces(P, ends, anchor, j, z, lam)
+            pulls = min(n_a, n_o) < -tol
+        else:
+            pulls = nstate[j] == ROCK and lam[3 * j + 2] < -tol
+        if pulls and math.isnan(summ[j, B_HELD]):
+            summ[j, B_HELD] = t
+
+
+@njit(cache=True)
+def _impact_with_less_restitution(P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, tol_impulse,
+                                  tol_rate, x_sel, lam_sel):
+    """The impact of an interface whose restitution couple (``extra``) leaves no contact mode
+    consistent: the couple is scaled down to the largest fraction s ∈ [0, 1) for which one is,
+    found by bisection to 2⁻³⁰ (docs/theory/stack.md §6). Such a set arises where the landing
+    block's rebound would make a block resting on it pull on its corner, while releasing that
+    corner would drive it into the face (a Painlevé configuration at the impulse level, made by
+    the couple: the plastic impact, s = 0, is tried first and must hold). ``extra`` is left
+    scaled; z, ż, ends and anchor change only on success. Returns SELECT_OK or SELECT_NONE."""
+    nz = extra.shape[0]
+    full = extra.copy()
+    z0, zd0, ends0, anchor0 = z.copy(), zd.copy(), ends.copy(), anchor.copy()
+    s_ok, s_bad = 0.0, 1.0
+    for j in range(nz):
+        extra[j] = 0.0
+    if select_mode(VELOCITY, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, -1, 0,
+                   tol_impulse, tol_rate, x_sel, lam_sel) != SELECT_OK:
+        for j in range(nz):
+            extra[j] = full[j]
+        return SELECT_NONE
+    for _ in range(30):
+        z[:] = z0
+        zd[:] = zd0
+        ends[:, :, :] = ends0
+        anchor[:] = anchor0
+        s = 0.5 * (s_ok + s_bad)
+        for j in range(nz):
+            extra[j] = s * full[j]
+        if select_mode(VELOCITY, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, -1, 0,
+                       tol_impulse, tol_rate, x_sel, lam_sel) == SELECT_OK:
+            s_ok = s
+        else:
+            s_bad = s
+    z[:] = z0
+    zd[:] = zd0
+    ends[:, :, :] = ends0
+    anchor[:] = anchor0
+    for j in range(nz):
+        extra[j] = s_ok * full[j]
+    return select_mode(VELOCITY, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, -1, 0,
+                       tol_impulse, tol_rate, x_sel, lam_sel)
+
+
+@njit(cache=True)
 def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, slot, tol_force, tol_rate,
                   rest_velocity, extra, x_sel, lam_sel, events, n_ev, d_impact, summ, held, stop_at_edge, ws):
     """Apply the event of guard ``slot`` on interface k at time t (y is the state there).
@@ -1055,10 +1115,28 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
             code = select_mode(VELOCITY, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, -1, 0,
                                tol_impulse, tol_rate, x_sel, lam_sel)
             if code != SELECT_OK:
+                code = _impact_with_less_restitution(P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate,
+                                                     tstate, tol_impulse, tol_rate, x_sel, lam_sel)
+                if code == SELECT_OK and math.isnan(summ[k, B_RESTITUTION_CUT]):
+                    summ[k, B_RESTITUTION_CUT] = t
+            if code != SELECT_OK:
+                # Painlevé's paradox at the impulse level (a corner that never slips, or one
+                # whose sliding friction turns the others' impulses round, would have to pull,
+                # and would sink if released): the contacts are held, as at the acceleration
+                # level (docs/theory/stack.md §5), and carry a small tension impulse
+                code = select_mode(VELOCITY, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate,
+                                   -1, 0, tol_impulse, tol_rate, x_sel, lam_sel, -1, True)
+                if code == SELECT_OK:
+                    _mark_pulling(P, ends, anchor, nstate, z, lam_sel, tol_impulse, t, summ)
+            if code != SELECT_OK:
                 n_ev = _record(events, n_ev, t, k, EVENT_IMPACT, -1, 0, 0.0)
                 return STATUS_INCONSISTENT, d_impact, n_ev
-            # rest: an impact that leaves almost no rotation lands the block flat (ends Zeno sequences)
-            if geo[k] == FLAT and nstate[k] == ROCK and abs(x_sel[i + 1]) < rest_velocity:
+            # rest: an impact that leaves almost no rotation lands the block flat (ends Zeno
+            # sequences); so does one that leaves it lifting, flat, slower than rest_velocity × its
+            # size (a rise the event location cannot resolve: the same impact came again at the
+            # same instant until the run stopped, 50 times, as inconsistent)
+            rests = nstate[k] == ROCK or (nstate[k] == OPEN and x_sel[i + 2] < rest_velocity * (P[k, P_HU] + P[k, P_BU]))
+            if geo[k] == FLAT and rests and abs(x_sel[i + 1]) < rest_velocity:
                 z[:] = z_pre
                 zd[:] = zd_pre
                 ends[:, :, :] = ends_pre

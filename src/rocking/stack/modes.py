@@ -302,12 +302,13 @@ def select_mode(level, P, ends, anchor, geo, z, zd, ah, av, gravity, rhs_extra,
             ok = nst <= geo[k]
             if other == 1 and geo[k] != FLAT:
                 ok = False
-            if nst >= ROCK and tst == 0 and level == ACCELERATION and zd[3 * k] != 0.0:
+            # (on the other end, ȧ is that corner's: its sign is checked once re-anchored, below)
+            if other == 0 and nst >= ROCK and tst == 0 and level == ACCELERATION and zd[3 * k] != 0.0:
                 ok = False  # a slipping interface cannot stick without an impulse
             if nst >= ROCK and tst != 0:
                 if P[k, P_CAN_SLIP] < 0.5:
                     ok = False
-                elif level == ACCELERATION and zd[3 * k] != 0.0 and tst * zd[3 * k] < 0.0:
+                elif other == 0 and level == ACCELERATION and zd[3 * k] != 0.0 and tst * zd[3 * k] < 0.0:
                     ok = False
             if nst == OPEN and tst != 0:
                 ok = False
@@ -374,7 +375,17 @@ def select_mode(level, P, ends, anchor, geo, z, zd, ah, av, gravity, rhs_extra,
                     c = counter[k]
                     nstate[k] = _CANDIDATES[c, 0]
                     tstate[k] = _CANDIDATES[c, 2]
-                if solve_mode_in(M, f, P, nstate, tstate, x_out, lam_out, frozen, free, row_of, k_red, b_red):
+                    if level == ACCELERATION and _CANDIDATES[c, 1] == 1 and zd[3 * k] != 0.0 and (
+                            tstate[k] * zd[3 * k] <= 0.0):
+                        # Rocking onto the other end of a slipping interface: its ȧ is now that
+                        # corner's, reversed where the corner is the lower block's (the slip is
+                        # measured along the other face). The slip keeps its way, in the sign of
+                        # the new ȧ; a stick would need an impulse. (Checked before the
+                        # re-anchoring, the old sign kept a slip that ran against its own ȧ: the
+                        # stick guard fired at once and zeroed a real slip velocity, energy the
+                        # ledger never saw: 21 J of 1800 in a random stack.)
+                        valid = False
+                if valid and solve_mode_in(M, f, P, nstate, tstate, x_out, lam_out, frozen, free, row_of, k_red, b_red):
                     good = True
                     for k in range(n):
                         c = counter[k]

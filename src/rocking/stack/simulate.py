@@ -296,6 +296,9 @@ def _response(stack, status, t_stop, samples, events, summ, e0) -> StackResponse
             "first_rocking_time": _opt(s[engine.B_FIRST_ROCK]),
             "first_sliding_time": _opt(s[engine.B_FIRST_SLIDE]),
             "tension_held_time": _opt(s[engine.B_HELD]),
+            # the first impact on this block's interface whose restitution had to be reduced for a
+            # consistent contact mode to exist (docs/theory/stack.md §6)
+            "restitution_reduced_time": _opt(s[engine.B_RESTITUTION_CUT]),
             # the first time a corner of this block reached the edge of the one below (it went
             # past it, or the run stopped there with stop_at_edge)
             "past_edge_time": float(edges[edges[:, 1] == k][0, 0]) if np.any(edges[:, 1] == k) else None,
