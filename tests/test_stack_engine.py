@@ -17,6 +17,7 @@ import rocking
 from rocking.analyses.paper import case_named, paper_motion, variant_setup
 from rocking.contact.friction import Friction
 from rocking.excitation.base import KIND_RAMP, ZERO_SIGNAL, AbstractMotion, Signal
+from rocking.report.stack import build_stack_content
 from rocking.stack import Block, Interface, Stack, simulate_stack
 
 G = 9.80665
@@ -547,14 +548,18 @@ def test_no_corner_sinks_into_the_face_below_in_random_stacks(seed):
     a verdict its ledger balances to 1e-5 of its energy scale: the worst today is 2.7e-6 (seed 4,
     1325 events), far from the 1e-9 of the designed stacks (docs/theory/stack.md §9)."""
     statuses = set()
+    undetermined = 0
     for stack, motion in _random_stacks(seed, 150):
         r = simulate_stack(stack, motion, options={"save_dt": 0.005, "max_events": 5000})
         statuses.add(r.status)
+        undetermined += r.status not in ("completed", "overturned")
         assert _deepest_sink(r) > -1e-5, (stack, motion, r.verdict)
         if r.status in ("completed", "overturned"):
             scale = np.max(np.abs(r.input_work)) + np.max(np.abs(r.energy - r.initial_energy))
             assert np.max(np.abs(r.balance_error())) <= 1e-5 * scale, (stack, motion)
     assert {"completed", "overturned"} <= statuses
+    # a ratchet: 7 and 10 until the impact rules of 2026-11-24 (the tests below), 4 and 6 since
+    assert undetermined <= {1: 4, 4: 6}[seed]
 
 
 def test_the_library_measures_a_sinking_corner_as_the_independent_geometry_does():
@@ -764,7 +769,8 @@ def _independent_energy(stack, r, gravity=9.80665):
     for k, b in enumerate(stack.blocks):
         inertia = b.mass * (b.width ** 2 + b.height ** 2) / 12.0
         v = r.velocity[:, k]
-        e += 0.5 * b.mass * (v[:, 0] ** 2 + v[:, 1] ** 2) + 0.5 * inertia * v[:, 2] ** 2 + b.mass * gravity * r.pose[:, k, 1]
+        e += 0.5 * b.mass * (v[:, 0] ** 2 + v[:, 1] ** 2) + 0.5 * inertia * v[:, 2] ** 2
+        e += b.mass * gravity * r.pose[:, k, 1]
     return e
 
 
@@ -821,6 +827,8 @@ def test_an_impact_whose_restitution_has_no_consistent_mode_restitutes_less():
     balance = e - e[0] - r.input_work + r.friction_loss + r.impact_loss
     assert np.max(np.abs(balance)) <= 1e-8 * (np.max(np.abs(r.input_work)) + np.max(np.abs(e - e[0])))
     assert _deepest_sink(r) > -1e-9
+    warnings = build_stack_content(r).warnings
+    assert any("t = 0.289 s an impact under block 1 restituted less" in w for w in warnings), warnings
 
 
 def test_an_impact_that_would_make_a_corner_pull_holds_it():
@@ -842,6 +850,8 @@ def test_an_impact_that_would_make_a_corner_pull_holds_it():
     r = simulate_stack(stack, motion, options={"save_dt": 0.005})
     assert r.status in ("completed", "overturned")
     assert r.blocks[2]["tension_held_time"] == pytest.approx(0.51592601, abs=1e-7)
+    warnings = build_stack_content(r).warnings
+    assert any("From t = 0.516 s the contact under block 3 carried a small tension" in w for w in warnings), warnings
     at = r.events[(np.abs(r.events[:, 0] - 0.51592601) < 1e-7) & (r.events[:, 2] == -1)]
     assert len(at) == 1 and at[0, 5] > 0.0
     e = _independent_energy(stack, r)

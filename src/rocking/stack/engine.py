@@ -1135,7 +1135,8 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
             # sequences); so does one that leaves it lifting, flat, slower than rest_velocity × its
             # size (a rise the event location cannot resolve: the same impact came again at the
             # same instant until the run stopped, 50 times, as inconsistent)
-            rests = nstate[k] == ROCK or (nstate[k] == OPEN and x_sel[i + 2] < rest_velocity * (P[k, P_HU] + P[k, P_BU]))
+            size = P[k, P_HU] + P[k, P_BU]
+            rests = nstate[k] == ROCK or (nstate[k] == OPEN and x_sel[i + 2] < rest_velocity * size)
             if geo[k] == FLAT and rests and abs(x_sel[i + 1]) < rest_velocity:
                 z[:] = z_pre
                 zd[:] = zd_pre
