@@ -212,6 +212,22 @@ def test_sampled_record_with_a_jump_at_its_start(vertical):
     assert r["diagnostics"]["indeterminate"] == 0
 
 
+def test_a_block_released_tilted_under_a_record_steps_to_its_first_sample():
+    """A block released at θ0 = 0.05 rad rocks from t = 0 under a record sampled every 0.01 s: its
+    first step must stop at the record's first sample, as every later one does (the other tests
+    of records start at rest, where the rest path takes its own limit). Events, grid and summary
+    as the cross-check, which steps sample by sample. (Written for compiled.py:491's mutant
+    4992d5ed, which it does not kill: the loop sets the limit again before the first step, so that
+    line's limit is a dead store and the mutant equivalent.)"""
+    tt = np.arange(0.0, 1.5 + 1e-9, 0.01)
+    motion = GroundMotion(time=tt, values=2.0 * np.sin(2.0 * np.pi * 1.5 * tt))
+    c, r = _both(rk.System(statue=BLOCK), motion, duration=1.5, save_dt=0.05, initial_rotation=0.05)
+    assert len(r["impacts"]) >= 2
+    _assert_rows_agree(c, r)
+    _assert_grid_agrees(c, r, 0.05)
+    _assert_summary_agrees(c, r)
+
+
 def test_breakpoint_event_row_rocking_to_slide_rock():
     """Released from θ0 = 0.1 rad on a still floor, the block rocks; at t = 0.3 s a record starts
     with a jump to −4 m/s², which the floor friction (μ = 0.12) cannot transmit: the regime turns
