@@ -383,7 +383,7 @@ def select_mode(level, P, ends, anchor, geo, z, zd, ah, av, gravity, rhs_extra,
                         # the new ȧ; a stick would need an impulse. (Checked before the
                         # re-anchoring, the old sign kept a slip that ran against its own ȧ: the
                         # stick guard fired at once and zeroed a real slip velocity, energy the
-                        # ledger never saw: 21 J of 1800 in a random stack.)
+                        # ledger never saw: 21 J in a random stack whose ledger scale was 379 J.)
                         valid = False
                 if valid and solve_mode_in(M, f, P, nstate, tstate, x_out, lam_out, frozen, free, row_of, k_red, b_red):
                     good = True
