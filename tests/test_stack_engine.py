@@ -812,9 +812,9 @@ def test_an_impact_whose_restitution_has_no_consistent_mode_restitutes_less():
     """A light wide block (4.7 kg) rocks on a heavy slender one (100 kg, restitution 0.52) that
     lands at t = 0.28855 s. With the restitution couple, every contact mode breaks a condition:
     the upper block's corner would have to pull, and released it would sink. The run stopped
-    "inconsistent". The couple is now scaled to the largest fraction that leaves a consistent mode
-    (docs/theory/stack.md §6), said in the block summary; the run reaches a verdict, the impact
-    loses energy, and the ledger balances to 1e-8 of its scale."""
+    "inconsistent". The couple is now scaled down, by bisection, to the boundary of the fractions
+    that leave a consistent mode (docs/theory/stack.md §6), said in the block summary; the run
+    reaches a verdict, the impact loses energy, and the ledger balances to 1e-8 of its scale."""
     stack = Stack(
         blocks=(Block(width=0.26007028406663035, height=0.9016335890884895, mass=100.1425696337417),
                 Block(width=1.1019054673202364, height=0.5644802266627765, mass=4.7490804296984725,

@@ -1006,44 +1006,36 @@ def _mark_pulling(P, ends, anchor, nstate, z, lam, tol, t, summ):
 def _impact_with_less_restitution(P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, tol_impulse,
                                   tol_rate, x_sel, lam_sel):
     """The impact of an interface whose restitution couple (``extra``) leaves no contact mode
-    consistent: the couple is scaled down to the largest fraction s ∈ [0, 1) for which one is,
-    found by bisection to 2⁻³⁰ (docs/theory/stack.md §6). Such a set arises where the landing
-    block's rebound would make a block resting on it pull on its corner, while releasing that
-    corner would drive it into the face (a Painlevé configuration at the impulse level, made by
-    the couple: the plastic impact, s = 0, is tried first and must hold). ``extra`` is left
+    consistent: the couple is scaled by a fraction s found by bisection between the plastic
+    impact (s = 0, which must hold) and the full couple (s = 1, which does not), to 2⁻³⁰: the
+    boundary of the consistent fractions, their largest where they form an interval
+    (docs/theory/stack.md §6). Such a set arises where the landing block's rebound would make a
+    block resting on it pull on its corner, while releasing that corner would drive it into the
+    face (a Painlevé configuration at the impulse level, made by the couple). ``extra`` is left
     scaled; z, ż, ends and anchor change only on success. Returns SELECT_OK or SELECT_NONE."""
     nz = extra.shape[0]
     full = extra.copy()
     z0, zd0, ends0, anchor0 = z.copy(), zd.copy(), ends.copy(), anchor.copy()
     s_ok, s_bad = 0.0, 1.0
-    for j in range(nz):
-        extra[j] = 0.0
-    if select_mode(VELOCITY, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, -1, 0,
-                   tol_impulse, tol_rate, x_sel, lam_sel) != SELECT_OK:
-        for j in range(nz):
-            extra[j] = full[j]
-        return SELECT_NONE
-    for _ in range(30):
+    for attempt in range(32):  # s = 0, 30 halvings, then s_ok for the outcome
+        s = 0.0 if attempt == 0 else (s_ok if attempt == 31 else 0.5 * (s_ok + s_bad))
         z[:] = z0
         zd[:] = zd0
         ends[:, :, :] = ends0
         anchor[:] = anchor0
-        s = 0.5 * (s_ok + s_bad)
         for j in range(nz):
             extra[j] = s * full[j]
-        if select_mode(VELOCITY, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, -1, 0,
-                       tol_impulse, tol_rate, x_sel, lam_sel) == SELECT_OK:
+        code = select_mode(VELOCITY, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, -1, 0,
+                           tol_impulse, tol_rate, x_sel, lam_sel)
+        if attempt == 0 and code != SELECT_OK:
+            for j in range(nz):
+                extra[j] = full[j]
+            return SELECT_NONE
+        if code == SELECT_OK:
             s_ok = s
         else:
             s_bad = s
-    z[:] = z0
-    zd[:] = zd0
-    ends[:, :, :] = ends0
-    anchor[:] = anchor0
-    for j in range(nz):
-        extra[j] = s_ok * full[j]
-    return select_mode(VELOCITY, P, ends, anchor, geo, z, zd, ah, av, gravity, extra, nstate, tstate, -1, 0,
-                       tol_impulse, tol_rate, x_sel, lam_sel)
+    return code
 
 
 @njit(cache=True)
