@@ -237,8 +237,10 @@ def _warnings(response: Any, found: list[Check]) -> list[str]:
                        "contact until it pushes again).")
         if b.get("restitution_reduced_time") is not None:
             out.append(f"At t = {b['restitution_reduced_time']:.3f} s an impact under {block_label(response.stack, k)} "
-                       "restituted less than its coefficient asks: with the full rebound no contact mode was "
-                       "consistent (a block resting on it would have had to pull on its corner).")
+                       "restituted less than its coefficient asks: the full rebound would have left no "
+                       "consistent contact mode (a block resting on it pulling on its corner) or would have "
+                       "created energy (a rebound pushing the block below faster than it slows the block "
+                       "above).")
     return out + [c.warning for c in found if c.result == FAIL and c.warning]
 
 
