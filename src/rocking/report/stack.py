@@ -233,8 +233,8 @@ def _warnings(response: Any, found: list[Check]) -> list[str]:
     for k, b in enumerate(response.blocks):
         if b.get("tension_held_time") is not None:
             out.append(f"From t = {b['tension_held_time']:.3f} s the contact under {block_label(response.stack, k)} "
-                       "carried a small tension (Painlevé's paradox of a face that never slips: the model holds the "
-                       "contact until it pushes again).")
+                       "carried a small tension (Painlevé's paradox of Coulomb friction: released, the contact "
+                       "would sink; the model holds it until it pushes again).")
         if b.get("restitution_reduced_time") is not None:
             out.append(f"At t = {b['restitution_reduced_time']:.3f} s an impact under {block_label(response.stack, k)} "
                        "restituted less than its coefficient asks: the full rebound would have left no "

@@ -990,16 +990,20 @@ def _slide_direction(ends, anchor, k, zd, sigma):
 
 
 @njit(cache=True)
+def _pulls(P, ends, anchor, nstate, j, z, lam, tol):
+    """Whether interface j's normal force or impulse ``lam`` pulls by more than ``tol``."""
+    if nstate[j] == FLAT:
+        n_a, n_o = flat_forces(P, ends, anchor, j, z, lam)
+        return min(n_a, n_o) < -tol
+    return nstate[j] == ROCK and lam[3 * j + 2] < -tol
+
+
+@njit(cache=True)
 def _mark_pulling(P, ends, anchor, nstate, z, lam, tol, t, summ):
     """Note t as the first instant a contact was held in tension (B_HELD) on every interface
     whose normal force or impulse ``lam`` pulls by more than ``tol``."""
     for j in range(P.shape[0]):
-        if nstate[j] == FLAT:
-            n_a, n_o = flat_forces(P, ends, anchor, j, z, lam)
-            pulls = min(n_a, n_o) < -tol
-        else:
-            pulls = nstate[j] == ROCK and lam[3 * j + 2] < -tol
-        if pulls and math.isnan(summ[j, B_HELD]):
+        if _pulls(P, ends, anchor, nstate, j, z, lam, tol) and math.isnan(summ[j, B_HELD]):
             summ[j, B_HELD] = t
 
 
@@ -1099,10 +1103,7 @@ def _energy_allowance(P, t_before, rest_velocity):
 def _creates_energy(P, ends, anchor, z, zd_after, t_before, allowance):
     """Whether an impact's outcome ``zd_after`` has more kinetic energy than ``t_before`` (J), by
     more than ``allowance`` (J, :func:`_energy_allowance`)."""
-    nz = z.shape[0]
-    if _kinetic_of(P, ends, anchor, z, zd_after[:nz]) <= t_before + allowance:
-        return False
-    return True
+    return _kinetic_of(P, ends, anchor, z, zd_after[:z.shape[0]]) > t_before + allowance
 
 
 @njit(cache=True)
@@ -1238,22 +1239,47 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
                     _project_onto_mode(P, ends, anchor, nstate, tstate, z, x_own, ah, av, gravity)
                     for j in range(nz):
                         x_sel[j] = x_own[j]
+            elif nstate[k] == OPEN and x_sel[i + 2] < rest_velocity * size:
+                # The corner hit leaves too slowly for its gap to open as far as the positions
+                # resolve, or still approaches within the impulse tolerance (-7e-13 m/s in a random
+                # stack): left open, the same impact came again at the same instant until the run
+                # stopped as inconsistent. It is kept closed, the block rocking on it, by a plastic
+                # impulse (the outcome projected onto that mode), which can only take energy. (If
+                # the rotation then drives the other corner down, that is an impact of its own.)
+                nstate[k] = ROCK
+                a_dot = x_sel[i]
+                tstate[k] = 0 if a_dot == 0.0 or P[k, P_CAN_SLIP] < 0.5 else (1 if a_dot > 0.0 else -1)
+                _project_onto_mode(P, ends, anchor, nstate, tstate, z, x_sel[:nz], ah, av, gravity)
             for j in range(nz):
                 zd[j] = x_sel[j]
             for j in range(n):
                 geo[j] = nstate[j]
             slowed = False
             for j in range(n):
+                size_j = P[j, P_HU] + P[j, P_BU]
                 # The rest rule for slips: an impact that leaves an interface slipping slower
                 # than rest_velocity × its block's size ends that slip (the acceleration-level
                 # choice below then decides stick or slip afresh). Without it, a statue at its
                 # rocking threshold went on switching rock, landing and a 1e-10 m/s slip every
                 # 1e-8 s.
-                if nstate[j] >= ROCK and tstate[j] != 0 and abs(zd[3 * j]) < rest_velocity * (P[j, P_HU] + P[j, P_BU]):
+                if nstate[j] >= ROCK and tstate[j] != 0 and abs(zd[3 * j]) < rest_velocity * size_j:
                     tstate[j] = 0
                     slowed = True
+                # The rest rule for rocking, on every interface: one left rocking slower than
+                # rest_velocity with its other end still closed (to the rounding of the positions,
+                # 1e-12 of its size; the pose is left as it is, since making it flat moved the
+                # blocks' weight by what the ledger saw: 6e-6 of a run's energy with 1e-9 of the
+                # size) lands flat, and the acceleration-level choice below decides afresh whether
+                # it rocks. Without it, an interface the impact had left rocking at 8e-10 rad/s on
+                # a face it was pressed onto turned into it 4 ns later, and three interfaces took
+                # turns landing until the run stopped at max_events.
+                if nstate[j] == ROCK and abs(zd[3 * j + 1]) < rest_velocity \
+                        and abs(end_gap(P, ends, anchor, j, z, zd, 1 - anchor[j])[0]) <= 1e-12 * size_j:
+                    nstate[j] = FLAT
+                    geo[j] = FLAT
+                    slowed = True
             if slowed:
-                # by a plastic impulse: zeroing the slip alone changed the other coordinates'
+                # both by a plastic impulse: zeroing the slip alone changed the other coordinates'
                 # momenta and could create energy (up to 3e-5 J of a 17 J scale in random stacks)
                 _project_onto_mode(P, ends, anchor, nstate, tstate, z, zd, ah, av, gravity)
             for j in range(n):
@@ -1302,9 +1328,16 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
     for j in range(n):
         held[j] = False
     if code == SELECT_HELD:
+        # every contact the hold leaves pulling is held, not only the event's: with one held, the
+        # other's force fired at once, and the two took turns at one instant until the run
+        # stopped as inconsistent (a random stack of three blocks)
         if math.isnan(summ[k, B_HELD]):
             summ[k, B_HELD] = t
         held[k] = True
+        for j in range(n):
+            if _pulls(P, ends, anchor, nstate, j, z, lam_sel, 0.0):
+                held[j] = True
+        _mark_pulling(P, ends, anchor, nstate, z, lam_sel, 0.0, t, summ)
         code = SELECT_OK
     if not impact:
         n_ev = _record(events, n_ev, t, k, slot, nstate[k], tstate[k], 0.0)
