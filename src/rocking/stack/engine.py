@@ -1343,13 +1343,12 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
         # every contact the hold leaves pulling is held, not only the event's: with one held, the
         # other's force fired at once, and the two took turns at one instant until the run
         # stopped as inconsistent (a random stack of three blocks)
-        if math.isnan(summ[k, B_HELD]):
-            summ[k, B_HELD] = t
         held[k] = True
         for j in range(n):
             if _pulls(P, ends, anchor, nstate, j, z, lam_sel, 0.0):
                 held[j] = True
-        _mark_pulling(P, ends, anchor, nstate, z, lam_sel, 0.0, t, summ)
+            if held[j] and math.isnan(summ[j, B_HELD]):
+                summ[j, B_HELD] = t
         code = SELECT_OK
     if not impact:
         n_ev = _record(events, n_ev, t, k, slot, nstate[k], tstate[k], 0.0)
