@@ -81,9 +81,11 @@ MODULES: dict[str, list[str]] = {
     ],
     "excitation/record.py": ["test_mutants.py", "test_records.py", "test_config.py", "test_single_block_rocking.py"],
     "solver/compiled.py": [
-        "test_mutants.py", "test_fast_paths.py", "test_single_block_rocking.py", "test_sliding_and_slide_rock.py",
+        "test_compiled_root_finders.py", "test_mutants.py", "test_fast_paths.py", "test_single_block_rocking.py", "test_sliding_and_slide_rock.py",
         "test_statue_on_pedestal.py", "test_integrator_crosscheck.py", "test_crosscheck_mutants.py",
-        "test_run_until_rest.py", "test_interrupts.py", "test_compiled_bounds.py",
+        "test_run_until_rest.py", "test_interrupts.py",
+        # the stack engine's half of this file cannot see a mutant of the two-body solver
+        "test_compiled_bounds.py::test_the_solver_core_stays_inside_its_arrays",
     ],
     "solver/crosscheck.py": ["test_integrator_crosscheck.py", "test_crosscheck_mutants.py"],
     "io/records.py": ["test_mutants.py", "test_records.py", "test_fuzz_inputs.py", "test_config.py"],
@@ -370,7 +372,10 @@ def restore(work: Work) -> None:
 
 
 def _pytest_args(work: Work, module: str, extra: list[str] | None = None) -> list[str]:
-    files = extra or [str(f) for f in (work.tree / "tests" / t for t in MODULES[module]) if f.is_file()]
+    # An entry is a test file or one test of it ("file.py::test_name"); a file the copy lacks
+    # (mapped after the copy was made) is left out.
+    files = extra or [str(work.tree / "tests" / t) for t in MODULES[module]
+                      if (work.tree / "tests" / t.split("::")[0]).is_file()]
     return [sys.executable, "-m", "pytest", "-x", "-q", "--no-header", "-o", "addopts=", "-p", "no:cacheprovider",
             "-p", GUARD_PLUGIN, *files]
 

@@ -60,6 +60,9 @@ for motion, options, kwargs, verdict in (
      "max_events"),
     (rk.Harmonic(amplitude=0.3 * g, frequency=2.0, cycles=4), rk.Options(), {"save": False}, "did not overturn"),
     (rk.Harmonic(amplitude=0.3 * g, frequency=2.0, cycles=4), rk.Options(save_dt=1.0), {}, "did not overturn"),
+    # still rocking at the run's end, past the motion's last breakpoint (2 s): the loop ends on
+    # t_end there, with no piece of the motion left to move to
+    (rk.Harmonic(amplitude=0.3 * g, frequency=2.0, cycles=4), rk.Options(), {"duration": 2.5}, "still_moving"),
 ):
     r = rk.simulate(alone, motion, options=options, throw=False, **kwargs)
     assert verdict in r.verdict + r.status, (verdict, r.verdict)
@@ -132,7 +135,7 @@ def _run_with_bounds_checked(script: str, tmp_path, what: str) -> str:
 
 def test_the_solver_core_stays_inside_its_arrays(tmp_path):
     out = _run_with_bounds_checked(_SOLVER_CASES, tmp_path, "solver")
-    assert out.count("\n") == 9
+    assert out.count("\n") == 10
 
 
 def test_the_stack_engine_stays_inside_its_arrays(tmp_path):

@@ -1941,3 +1941,37 @@ def test_the_uplift_warning_falls_inside_the_uplift_seen_in_the_saved_samples():
     assert len(said) == 1
     t_warn = float(re.search(r"from t = ([0-9.]+) s", said[0]).group(1))
     assert any(t0 - 1e-4 <= t_warn <= t1 + 1e-4 for t0, t1 in spans), (t_warn, spans)
+
+
+@pytest.mark.parametrize("amplitude", [0.5, 4.0])
+def test_a_run_whose_duration_falls_a_rounding_short_of_a_grid_time_saves_its_end(amplitude):
+    """A duration of 1 − 5e-12 s with samples every 0.01 s: the grid's last time, 1.0 s, lies
+    past the run's end by less than the grid's 1e-9 tolerance, so it counts, and the run's last
+    state is saved there at the run's end (the step loop stops at t_end and leaves it to the
+    final hold). Both a run that ends at rest and one still rocking must end their samples with
+    the state at t_end: the curves, animations and residual displacement read off the samples
+    would otherwise stop a sample short. Kills compiled.py's final hold
+    taken only for an overturn (`status == STATUS_OVERTURNED`: the last sample was 0.99 s)."""
+    duration = 1.0 - 5e-12
+    r = rk.simulate(rk.System(statue=rk.Statue(width=0.4, height=1.6, mass=100.0)),
+                    rk.Harmonic(amplitude=amplitude, frequency=2.0, cycles=3), duration=duration,
+                    options=rk.Options(save_dt=0.01))
+    assert r.t[-1] == duration
+    assert np.count_nonzero(np.isclose(r.t, np.round(r.t, 2), rtol=0.0, atol=1e-11)) >= 101
+
+
+@pytest.mark.parametrize("mu", [0.25, 0.5])
+def test_a_friction_demand_tied_with_mus_for_a_whole_pulse_is_no_slip(mu):
+    """A block (μs = μk = μ, squat: it cannot rock) under a rectangle pulse of exactly μ·g: the
+    friction the floor must give, m·μ·g, equals μs·N to the bit for the whole second. Coulomb's
+    law holds the block (|F| ≤ μs·N); with μk = μs a slide would have no acceleration either, so
+    the only difference is what the run reports. It must report rest: no event, no sliding onset,
+    no warning. Kills compiled.py's tie rule for a friction guard that starts at zero and stays
+    there (`g1 < 1` for `g1 < 0`: a SLIP at t = 0, a "slide" through the pulse and a
+    `first_sliding_time` of 0.0 s for a block that never moved)."""
+    block = rk.Statue(width=1.0, height=1.0, mass=10.0, friction=rk.Friction(static=mu, kinetic=mu))
+    r = rk.simulate(rk.System(statue=block), rk.RectanglePulse(amplitude=mu * rk.g, width=1.0), duration=2.0)
+    assert r.events == []
+    summary = r.summary()
+    assert summary["first_sliding_time"] is None and summary["peak_sliding"] == 0.0
+    assert not r.warnings

@@ -1,0 +1,108 @@
+"""The two searches of the compiled solver's event location, tested on their own.
+
+``_locate`` finds the first zero of a guard inside a bracket; ``_minimum`` finds a dip of a guard
+below zero between two positive ends (a grazing touch, scipy#9228). In a run both read the guard
+off the step's dense output. Here the dense output is built so that the impact guard of a
+statue rocking on its +x corner, S·θ(x) = θ(x), is a polynomial chosen in the test: the searches
+are checked against roots and minima known in closed form, with no physics involved.
+
+The dense output of the 8th-order step is a nested product in x and 1 − x
+(``dop853.dense_component``); it is linear in the rows of ``F``, so the rows that give a wanted
+polynomial are solved for from its values at as many points as there are rows used.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from rocking.integrators import dop853
+from rocking.models.modes import IMPACT, N_GUARDS
+from rocking.models.parameters import N_PARAMS
+from rocking.solver.compiled import N_STATE, _guard_at, _locate, _minimum
+
+THETA = 2  # the state's column of θ
+
+
+def _dense_rows(poly, n_rows):
+    """The state at the step's start and ``F`` (INTERPOLATOR_POWER × N_STATE) whose θ column
+    interpolates the polynomial ``poly`` (a callable of the step fraction x, degree ≤ n_rows).
+    Every row of ``F`` adds a multiple of x (the output starts at the state), so θ at the start
+    is ``poly(0)`` and the rows fit the rest."""
+    F = np.zeros((dop853.INTERPOLATOR_POWER, N_STATE))
+    y0 = np.zeros(N_STATE)
+    y0[THETA] = poly(0.0)
+    xs = np.linspace(0.05, 0.95, n_rows)
+    basis = np.empty((n_rows, n_rows))
+    for k in range(n_rows):
+        unit = np.zeros_like(F)
+        unit[k, THETA] = 1.0
+        basis[:, k] = [dop853.dense_component(np.zeros(N_STATE), unit, x, THETA) for x in xs]
+    F[:n_rows, THETA] = np.linalg.solve(basis, [poly(x) - y0[THETA] for x in xs])
+    return y0, F
+
+
+def _search_args(y0, F):
+    """The arguments the two searches share, for the impact guard of a statue on its +x corner
+    (``s = 1``, not sliding): only θ is read, so the parameters and the floor are left empty."""
+    p = np.zeros(N_PARAMS)
+    loc = np.zeros(16)
+    work = np.empty(N_STATE)
+    gbuf = np.empty(N_GUARDS)
+    return p, 0, 1, y0, F, 1e-2, loc, 0.0, False, work, gbuf, IMPACT
+
+
+def _guard(args, x):
+    return _guard_at(*args[:6], x, *args[6:])
+
+
+def test_the_dense_output_built_here_is_the_polynomial_asked_for():
+    poly = lambda x: (x - 0.3) * (0.8 - x)  # noqa: E731
+    y0, F = _dense_rows(poly, 3)
+    args = _search_args(y0, F)
+    for x in np.linspace(0.0, 1.0, 11):
+        assert _guard(args, x) == pytest.approx(poly(x), abs=1e-15)
+
+
+def test_locate_finds_the_first_zero_when_the_bracket_ends_on_a_zero():
+    # A guard that starts tied after an event (zero at x = 0), is positive inside and is zero to
+    # the bit at the step's end: the secant point then falls on the bracket's end, and the search
+    # must bisect inside the bracket. The zero it must find is the end, x = 1.
+    y0, F = _dense_rows(lambda x: x * (1.0 - x), 3)
+    args = _search_args(y0, F)
+    g_hi = _guard(args, 1.0)
+    assert g_hi == 0.0  # the case under test: the secant's end point is the root itself
+    x0 = 0.25
+    x = _locate(*args, _guard(args, x0), g_hi, x0, 1.0)
+    assert x0 <= x <= 1.0
+    assert x == pytest.approx(1.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("root", [0.1, 0.5, 0.93])
+def test_locate_finds_a_simple_zero_to_the_event_tolerance(root):
+    # (x − root)·(x + 1)·(−1): positive before the root, negative after. The search stops when
+    # the bracket is 1e-15 s wide: at h = 1e-2 s that is 1e-13 of the step.
+    y0, F = _dense_rows(lambda x: (root - x) * (x + 1.0), 3)
+    args = _search_args(y0, F)
+    x = _locate(*args, _guard(args, 0.0), _guard(args, 1.0), 0.0, 1.0)
+    assert x == pytest.approx(root, abs=1e-12)
+    assert _guard(args, x) <= 0.0  # the located point is on or past the crossing
+
+
+@pytest.mark.parametrize("centre", [0.2, 0.55, 0.8])
+def test_minimum_finds_a_narrow_dip_below_zero_anywhere_in_the_step(centre):
+    # (x − c)² − w²: positive at both ends of the step, below zero only within ±w of c. With
+    # w = 0.01 the golden-section search must narrow the bracket several times before one of
+    # its points falls inside the dip (its first two points, 0.382 and 0.618, are outside).
+    w = 0.01
+    y0, F = _dense_rows(lambda x: (x - centre) ** 2 - w * w, 3)
+    args = _search_args(y0, F)
+    assert _guard(args, 0.0) > 0.0 and _guard(args, 1.0) > 0.0
+    x = _minimum(*args)
+    assert abs(x - centre) <= w
+    assert _guard(args, x) <= 0.0
+
+
+def test_minimum_reports_no_dip_for_a_guard_that_stays_positive():
+    y0, F = _dense_rows(lambda x: (x - 0.4) ** 2 + 1e-4, 3)
+    assert _minimum(*_search_args(y0, F)) == -1.0
