@@ -1975,3 +1975,25 @@ def test_a_friction_demand_tied_with_mus_for_a_whole_pulse_is_no_slip(mu):
     summary = r.summary()
     assert summary["first_sliding_time"] is None and summary["peak_sliding"] == 0.0
     assert not r.warnings
+
+
+def test_a_slide_found_inside_a_step_starts_at_the_same_instant_without_saved_samples():
+    """The brief excess of friction demand of
+    `test_a_friction_demand_that_exceeds_mus_for_a_fraction_of_a_step_starts_the_slide` (μs a
+    millionth below the demand's peak, 0.2062), run without saved samples as every study's batch
+    runs are. With samples, a grid point inside nearly every step builds the dense output anyway;
+    without them, the dip seen at the step's stages must build it. The slide must start at the
+    same instant, to the event accuracy (1e-9 s). Kills compiled.py:620 (`g0 > 1` in the test
+    that builds the dense output for a dip: the search then read the previous step's interpolant
+    and put the slide at 0.1561 s, for 0.1633 s)."""
+    from rocking.models.regimes import EventKind
+
+    statue = rk.Statue(width=0.2, height=1.2, mass=0.05, restitution=0.8)
+    mu_s = 0.20620337647919162 * (1.0 - 1e-6)  # the peak demand, as that test measures it
+    pedestal = rk.Pedestal(mass=0.02, friction=rk.Friction(static=mu_s, kinetic=0.8 * mu_s))
+    motion = rk.SinePulse(amplitude=2.5, frequency=1.5, phase=math.pi)
+    system = rk.System(statue=statue, pedestal=pedestal)
+    slips = [[e.time for e in rk.simulate(system, motion, duration=0.3, save=save).events if e.kind == EventKind.SLIP]
+             for save in (True, False)]
+    assert slips[0] and slips[0][0] == pytest.approx(0.16326, abs=1e-4)
+    assert slips[1] == pytest.approx(slips[0], abs=1e-9)
