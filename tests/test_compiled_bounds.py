@@ -83,6 +83,13 @@ r = rk.simulate(rk.System(statue=rk.Statue(width=0.6, height=1.2, mass=20.0,
                 rk.Harmonic(amplitude=8.0, frequency=2.0, cycles=3), throw=False)
 assert 3 in r.regime, np.unique(r.regime)
 print(r.verdict)
+# a block released tilted; at 0.3 s the floor jumps to -4 m/s², more than its friction carries:
+# rocking turns into slide-rock at that breakpoint, whose event row is written in full
+slippy = rk.Statue(width=0.4, height=2.0, mass=1.0, friction=rk.Friction(static=0.12, kinetic=0.1))
+r = rk.simulate(rk.System(statue=slippy), GroundMotion(time=np.array([0.3, 0.5, 0.7]), values=np.array([-4.0, -4.0, 0.0])),
+                duration=1.0, initial_rotation=0.1, throw=False)
+assert r.events[0].kind == rk.EventKind.BREAKPOINT and r.event_table[0, 9] == 0.0, r.event_table[:2]
+print(r.verdict)
 """
 
 _STACK_CASES = """
@@ -135,7 +142,7 @@ def _run_with_bounds_checked(script: str, tmp_path, what: str) -> str:
 
 def test_the_solver_core_stays_inside_its_arrays(tmp_path):
     out = _run_with_bounds_checked(_SOLVER_CASES, tmp_path, "solver")
-    assert out.count("\n") == 10
+    assert out.count("\n") == 11
 
 
 def test_the_stack_engine_stays_inside_its_arrays(tmp_path):
