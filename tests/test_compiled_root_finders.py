@@ -19,7 +19,8 @@ import pytest
 from rocking.integrators import dop853
 from rocking.models.modes import IMPACT, N_GUARDS
 from rocking.models.parameters import N_PARAMS
-from rocking.solver.compiled import N_STATE, _guard_at, _locate, _minimum
+from rocking.excitation.signal import LOCAL_SIZE
+from rocking.solver.compiled import N_STATE, _guard_at, _locate, _minimum, _piece
 
 THETA = 2  # the state's column of θ
 
@@ -44,9 +45,10 @@ def _dense_rows(poly, n_rows):
 
 def _search_args(y0, F):
     """The arguments the two searches share, for the impact guard of a statue on its +x corner
-    (``s = 1``, not sliding): only θ is read, so the parameters and the floor are left empty."""
+    (``s = 1``, not sliding): only θ is read, so the parameters and the floor (a piece of the
+    motion, in the tuple form the solver passes) are left empty."""
     p = np.zeros(N_PARAMS)
-    loc = np.zeros(16)
+    loc = _piece(np.zeros((1, 2 * LOCAL_SIZE)), 0)
     work = np.empty(N_STATE)
     gbuf = np.empty(N_GUARDS)
     return p, 0, 1, y0, F, 1e-2, loc, 0.0, False, work, gbuf, IMPACT

@@ -487,6 +487,16 @@ def test_top_friction_needed_at_impacts_on_a_sliding_pedestal():
     assert r.summary()["required_top_friction"] == pytest.approx(max(_top_ratio_of(i) for i in impacts), rel=1e-9)
 
 
+def _light_statue_rocking_on_a_pedestal(mu_s, **kwargs):
+    """A 50 g statue on a 20 g pedestal (floor friction μs, μk = 0.8·μs) under a one-sine pulse,
+    0.3 s: the statue rocks, and the friction demand on the floor peaks at 0.2062 (the two tests
+    below)."""
+    statue = rk.Statue(width=0.2, height=1.2, mass=0.05, restitution=0.8)
+    pedestal = rk.Pedestal(mass=0.02, friction=rk.Friction(static=mu_s, kinetic=0.8 * mu_s))
+    return rk.simulate(rk.System(statue=statue, pedestal=pedestal),
+                       rk.SinePulse(amplitude=2.5, frequency=1.5, phase=math.pi), duration=0.3, **kwargs)
+
+
 def test_a_friction_demand_that_exceeds_mus_for_a_fraction_of_a_step_starts_the_slide():
     """A light statue (50 g) rocks on a 20 g pedestal the floor holds (μs = 10). The friction
     demand |F|/N peaks at 0.2062 (F < 0) at 0.163 s, while the statue rocks, with N below 1 N.
@@ -497,14 +507,7 @@ def test_a_friction_demand_that_exceeds_mus_for_a_fraction_of_a_step_starts_the_
     with N < 1 N overstates the margin)."""
     from rocking.models.regimes import EventKind, Regime
 
-    statue = rk.Statue(width=0.2, height=1.2, mass=0.05, restitution=0.8)
-    motion = rk.SinePulse(amplitude=2.5, frequency=1.5, phase=math.pi)
-
-    def run(mu_s, **kwargs):
-        pedestal = rk.Pedestal(mass=0.02, friction=rk.Friction(static=mu_s, kinetic=0.8 * mu_s))
-        return rk.simulate(rk.System(statue=statue, pedestal=pedestal), motion, duration=0.3, **kwargs)
-
-    held = run(10.0, options=rk.Options(save_dt=1e-5))
+    held = _light_statue_rocking_on_a_pedestal(10.0, options=rk.Options(save_dt=1e-5))
     forces = held.contact_forces()
     demand = np.where((held.t > 0.1) & (held.t < 0.25), forces["F"] / forces["N"], 0.0)
     i = int(np.argmax(np.abs(demand)))
@@ -512,7 +515,7 @@ def test_a_friction_demand_that_exceeds_mus_for_a_fraction_of_a_step_starts_the_
     assert demand[i] < 0.0 and held.regime[i] == Regime.ROCK and forces["N"].max() < 1.0
     assert not [e for e in held.events if e.kind == EventKind.SLIP]
 
-    slips = [e for e in run(peak * (1.0 - 1e-6)).events if e.kind == EventKind.SLIP]
+    slips = [e for e in _light_statue_rocking_on_a_pedestal(peak * (1.0 - 1e-6)).events if e.kind == EventKind.SLIP]
     assert slips, "the slide was missed"
     slip = slips[0]
     assert (slip.before, slip.after) == (Regime.ROCK, Regime.SLIDE_ROCK)
@@ -1988,12 +1991,8 @@ def test_a_slide_found_inside_a_step_starts_at_the_same_instant_without_saved_sa
     and put the slide at 0.1561 s, for 0.1633 s)."""
     from rocking.models.regimes import EventKind
 
-    statue = rk.Statue(width=0.2, height=1.2, mass=0.05, restitution=0.8)
     mu_s = 0.20620337647919162 * (1.0 - 1e-6)  # the peak demand, as that test measures it
-    pedestal = rk.Pedestal(mass=0.02, friction=rk.Friction(static=mu_s, kinetic=0.8 * mu_s))
-    motion = rk.SinePulse(amplitude=2.5, frequency=1.5, phase=math.pi)
-    system = rk.System(statue=statue, pedestal=pedestal)
-    slips = [[e.time for e in rk.simulate(system, motion, duration=0.3, save=save).events if e.kind == EventKind.SLIP]
+    slips = [[e.time for e in _light_statue_rocking_on_a_pedestal(mu_s, save=save).events if e.kind == EventKind.SLIP]
              for save in (True, False)]
     assert slips[0] and slips[0][0] == pytest.approx(0.16326, abs=1e-4)
     assert slips[1] == pytest.approx(slips[0], abs=1e-9)
