@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import ast
+import difflib
 import json
 import os
 import re
@@ -34,6 +35,8 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
 DEFAULT_WORK = Path(tempfile.gettempdir()) / "rocking-mutation"
+SHARE_FILE = "share.txt"  # other work folders whose results this one reuses (`run --share`)
+MIRRORED = "not run again: the outcome of"
 
 # Module (under src/rocking) -> the test files that exercise it, most direct and fastest first:
 # pytest runs with -x, so a killed mutant usually stops within the first file. A file missing
@@ -389,9 +392,48 @@ def run_tests(work: Work, module: str, cache: Path, extra: list[str] | None = No
     return proc.returncode, time.monotonic() - t0
 
 
+def _diff_body(lines) -> tuple[str, ...]:
+    # a mutant's diff without its file names, which name the folder it ran in
+    return tuple(line for line in lines if not line.startswith(("---", "+++")))
+
+
+def _mutant_diff(work: Work, module: str) -> tuple[str, ...]:
+    """The mutant now written over the copy's module, as cosmic-ray's diff records it."""
+    original = (work.pristine / "rocking" / module).read_text(encoding="utf-8")
+    mutated = (work.tree / "src" / "rocking" / module).read_text(encoding="utf-8")
+    return _diff_body(difflib.unified_diff(original.split("\n"), mutated.split("\n"), lineterm=""))
+
+
+def shared_folders(work: Work) -> list[Work]:
+    path = work.root / SHARE_FILE
+    return [Work(Path(f)) for f in path.read_text().split()] if path.exists() else []
+
+
+def _outcome_elsewhere(work: Work, module: str) -> tuple[Path, object] | None:
+    """A sibling folder's result for the mutant now in the copy, if it ran it on the same source."""
+    mine = _mutant_diff(work, module)
+    original = (work.pristine / "rocking" / module).read_bytes()
+    for other in shared_folders(work):
+        if not other.db(module).exists() or (other.pristine / "rocking" / module).read_bytes() != original:
+            continue
+        _, done = _results(other, module)
+        for result in done.values():
+            if result.diff and result.worker_outcome == "normal" and _diff_body(result.diff.splitlines()[1:]) == mine:
+                return other.root, result
+    return None
+
+
 def worker_test(work: Work, module: str) -> int:
     """The per-mutant test command cosmic-ray runs (in its own process group, killed on timeout)."""
     (work.root / "current-test.pid").write_text(str(os.getpid()))
+    found = _outcome_elsewhere(work, module)
+    if found is not None:
+        # Two workers draw from the same mutants in random order; a mutant the other folder has
+        # already run on the same source is not run again. Its outcome is copied and the copy says so.
+        folder, result = found
+        timeout = " (timeout)" if result.output == "timeout" else ""
+        print(f"{MIRRORED} {folder}: {result.test_outcome}{timeout}")
+        return 0 if result.test_outcome == "survived" else 1
     _fill_cache(work.base_cache, work.worker_cache, work.tree / "src", stale_modules(work.tree / "src", module))
     return subprocess.run(_pytest_args(work, module), cwd=work.tree, env=work.env(work.worker_cache)).returncode
 
@@ -523,11 +565,34 @@ def summarise(work: Work, module: str) -> dict:
     return counts
 
 
+def union_counts(works: list[Work], module: str) -> dict:
+    """Counts over several folders on the same source, each mutant once (told apart by its diff):
+    run in any of them, its own outcome rather than a copied one."""
+    total = summarise(works[0], module)["mutants"]
+    outcome: dict[tuple[str, ...], str] = {}
+    for w in works:
+        if not w.db(module).exists():
+            continue
+        for result in _results(w, module)[1].values():
+            if result.worker_outcome != "normal" or not result.diff:
+                continue
+            key = _diff_body(result.diff.splitlines()[1:])
+            if key in outcome and (result.output or "").startswith(MIRRORED):
+                continue
+            outcome[key] = "timeout" if result.output == "timeout" else str(result.test_outcome.value)
+    counts = dict(mutants=total, killed=0, timeout=0, survived=0)
+    for value in outcome.values():
+        counts[value] = counts.get(value, 0) + 1
+    counts["pending"] = total - len(outcome)
+    return counts
+
+
 def survivors(work: Work, module: str):
     items, done = _results(work, module)
     for item in items:
         result = done.get(item.job_id)
-        if result is not None and result.test_outcome == "survived":
+        # a copied outcome is listed by the folder that ran it
+        if result is not None and result.test_outcome == "survived" and not (result.output or "").startswith(MIRRORED):
             yield item, result
 
 
@@ -667,7 +732,11 @@ def main(argv=None) -> int:
     p.add_argument("--minutes", type=float, help="stop after this long (the interrupted mutant stays pending)")
     p.add_argument("--timeout", type=float, help="seconds per mutant, also for sessions already begun "
                    "(default: 5 × the baseline's per-mutant time, at least 120)")
+    p.add_argument("--share", type=Path, action="append", default=[], metavar="FOLDER",
+                   help="another work folder on the same source: a mutant it has run is not run "
+                        "again here, its outcome is copied (give it to both workers, each naming the other)")
     sub.add_parser("report", help="counts per module")
+    sub.add_parser("union", help="counts of distinct mutants over this folder and those it shares with (`run --share`)")
     p = sub.add_parser("plan", help="mutants per module under the policy, and a time estimate (runs nothing)")
     p.add_argument("modules", nargs="*")
     p = sub.add_parser("survivors", help="list surviving mutants with their diffs")
@@ -704,6 +773,8 @@ def main(argv=None) -> int:
             raise SystemExit(f"no test mapping for {unknown}; add them to MODULES")
         deadline = time.time() + 60 * args.minutes if args.minutes else None
         prepare(work, force=False)
+        if args.share:
+            (work.root / SHARE_FILE).write_text("\n".join(str(f.resolve()) for f in args.share) + "\n")
         for module in modules:
             if not work.db(module).exists():
                 meta = baseline(work, module)
@@ -732,6 +803,12 @@ def main(argv=None) -> int:
                 meta = json.loads(work.meta(module).read_text()) if work.meta(module).exists() else {}
                 print(f"| {module} | {c['mutants']} | {c['killed']} | {c['timeout']} | {c['survived']} | "
                       f"{c['incompetent']} | {c['pending']} | {meta.get('per_mutant_s', '?')} s |")
+        return 0
+    if args.cmd == "union":
+        print(f"distinct mutants over {work.root} and {', '.join(str(w.root) for w in shared_folders(work)) or '(none shared)'}")
+        for module in MODULES:
+            if work.db(module).exists():
+                print(f"{module}: {union_counts([work, *shared_folders(work)], module)}")
         return 0
     if args.cmd == "survivors":
         for module in args.modules or list(MODULES):
