@@ -8,6 +8,7 @@ import pytest
 from helpers import G, alone, block
 
 import rocking as rk
+from rocking.excitation.record import GroundMotion
 from rocking.excitation.signal import cosine_band_exit
 from rocking.integrators import dop853
 from rocking.models.modes import N_GUARDS, rest_band
@@ -128,6 +129,23 @@ def test_a_block_below_its_threshold_is_never_integrated():
     assert not r.events
     assert np.all(r.theta == 0.0) and r.t[-1] == pytest.approx(15.0, abs=1e-12)
     assert len(r.t) == 1501  # the whole output grid, held at rest
+
+
+@pytest.mark.parametrize("with_friction", [False, True])
+def test_a_block_below_its_thresholds_under_a_record_is_never_integrated(with_friction):
+    # The same under a record: between two samples the floor acceleration is linear in time, so
+    # are the guards of rest, and rest positive at both samples holds in between. Fails if
+    # compiled.py:541 evaluates those guards at the next sample as if sliding (`sig = 1`: the
+    # sliding-stops guard u̇ = 0 is then never positive, and every sample interval is integrated).
+    # with friction, μs·g above the record's peak too, so the friction guards are watched
+    st = block(0.25, 1.0, friction=rk.Friction(static=0.5, kinetic=0.4) if with_friction else None)
+    level = G * math.tan(st.slenderness)
+    t = np.round(np.arange(0.0, 8.0, 0.01), 10)
+    record = GroundMotion(time=t, values=0.9 * level * np.sin(2 * np.pi * 1.7 * t) * np.exp(-0.2 * t))
+    r = rk.simulate(alone(st), record, options=rk.Options(gravity=G))
+    assert r.raw_summary[S_STEPS] == 0
+    assert not r.events
+    assert np.all(r.theta == 0.0) and np.all(r.u == 0.0)
 
 
 def test_rocking_from_a_tie_is_not_held_up_by_the_impact_step_limit():

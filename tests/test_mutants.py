@@ -1838,6 +1838,83 @@ def test_the_peak_rotation_is_the_same_without_saved_samples_and_is_the_largest_
     assert peak == pytest.approx(float(np.max(np.abs(sampled.theta))), abs=1e-7)
 
 
+@pytest.mark.parametrize("side", [1.0, -1.0])
+def test_a_statue_released_exactly_at_alpha_turning_outwards_exceeds_it_at_once_and_falls_on_time(side):
+    """A statue alone on a still floor, released at θ = ±α (its balance point) turning outwards
+    at 0.05 rad/s, falls. Its summary must say it passed α at t = 0: the guard α − |θ| starts on
+    zero and is never positive, so no crossing of it is ever found (before the fix the summary
+    said it never exceeded α, for a statue that fell; so did it for one released at rest beyond
+    α). Released turning inwards, it rocks back and never passes α. The fall time is checked against free rocking about the corner:
+    with φ = |θ| − α, φ̈ = p² sin φ (Housner; p² = 3g/(4R), R the half-diagonal), so the time
+    from φ = 0 at φ̇ = w to φ = π/2 − α is ∫ dφ / √(w² + 2p²(1 − cos φ)) (scipy.quad; the
+    solver's events are located to 1e-9 s, and its integration error over 1.9 s is below 1e-7 s:
+    1e-6 s is the tolerance)."""
+    from scipy.integrate import quad
+
+    b, h, w = 0.4, 2.0, 0.05
+    statue = rk.Statue(width=b, height=h, mass=50.0)
+    alpha = math.atan(b / h)
+    floor = rk.Harmonic(amplitude=0.0, frequency=1.0, cycles=3)
+    out = rk.simulate(rk.System(statue=statue), floor, initial_rotation=side * alpha,
+                      initial_angular_velocity=side * w).summary()
+    assert out["overturned"] and out["exceeded_alpha_time"] == 0.0
+    p2 = 3.0 * 9.80665 / (4.0 * 0.5 * math.hypot(b, h))
+    t_fall, _ = quad(lambda phi: 1.0 / math.sqrt(w * w + 2.0 * p2 * (1.0 - math.cos(phi))), 0.0,
+                     0.5 * math.pi - alpha, epsabs=1e-13, epsrel=1e-13)
+    assert t_fall == pytest.approx(1.8746, abs=1e-3)
+    assert out["overturn_time"] == pytest.approx(t_fall, abs=1e-6)
+    t_fall_outwards = t_fall
+    back = rk.simulate(rk.System(statue=statue), floor, initial_rotation=side * alpha,
+                       initial_angular_velocity=-side * w).summary()
+    assert not back["overturned"] and back["exceeded_alpha_time"] is None
+    assert back["peak_rotation"] == pytest.approx(alpha, rel=1e-12)
+    # released at rest beyond α: the same, from φ0 = 0.1 α, ∫ dφ / √(2p²(cos φ0 − cos φ)),
+    # with φ = φ0 + v² (dφ = 2v dv) to take away the start's 1/√ singularity, and the
+    # difference of cosines as a product (no cancellation near the start)
+    phi0 = 0.1 * alpha
+    beyond = rk.simulate(rk.System(statue=statue), floor, initial_rotation=side * 1.1 * alpha).summary()
+    t_fall, _ = quad(lambda v: 2.0 * v / math.sqrt(4.0 * p2 * math.sin(phi0 + 0.5 * v * v) * math.sin(0.5 * v * v)), 0.0,
+                     math.sqrt(0.5 * math.pi - alpha - phi0), epsabs=1e-13, epsrel=1e-13)
+    assert beyond["overturned"] and beyond["exceeded_alpha_time"] == 0.0
+    assert beyond["overturn_time"] == pytest.approx(t_fall, abs=1e-6)
+    # the SciPy integrator cross-check keeps the same books
+    from rocking.solver.crosscheck import simulate_crosscheck
+
+    cross = simulate_crosscheck(rk.System(statue=statue), floor, duration=3.0, initial_rotation=side * alpha,
+                                initial_angular_velocity=side * w, save=False)
+    assert cross["exceeded_alpha_time"] == 0.0 and cross["overturn_time"] == pytest.approx(t_fall_outwards, abs=1e-6)
+
+
+@pytest.mark.parametrize("case", ["statue alone, rectangle pulse", "statue on its pedestal, the paper's harmonic"])
+def test_a_floor_motion_that_jumps_at_the_start_starts_the_run_in_the_regime_after_the_jump(case):
+    """Pulses and the cos-form harmonic jump at t = 0 (to A at 0⁺). The run starts in the regime
+    consistent with the floor at 0⁺, as docs/paper-case-studies.md reads the paper's cases ("the
+    pedestal slides at once"): the first saved sample carries that regime, the summary's first
+    rocking or sliding time is 0, and the event log holds no transition at t = 0 (there is no
+    earlier regime to leave: the motion and the run begin together). (Written for mutant
+    d42f7435, `breakpoints[ib] < t` at the start, which it does not kill: the run starts at
+    t = 0 and every breakpoint passed to the solver is > 0, so that mutant is equivalent. The
+    claim stands on its own: a run that began at rest and left it by an event at t = 0 would
+    fail here.)"""
+    g = 9.80665
+    if case == "statue alone, rectangle pulse":
+        # b/h = 0.2 and a pulse of 0.25 g: beyond g·tan α at once, and no friction to slide
+        system = rk.System(statue=rk.Statue(width=0.4, height=2.0, mass=50.0))
+        motion, expected = rk.RectanglePulse(amplitude=-0.25 * g, width=0.3), rk.Regime.ROCK
+    else:
+        # 6.75 m/s² > μs·g = 3.92 m/s²: the pedestal slides at once, and the statue (b/h = 1/4)
+        # rocks at once on it (paper case b)
+        system = rk.System(statue=rk.Statue(width=1.0, height=4.0, mass=1.0, restitution=0.8),
+                           pedestal=rk.Pedestal(mass=1.0, friction=rk.Friction(static=0.4, kinetic=0.3)))
+        motion, expected = rk.Harmonic(amplitude=6.75, frequency=1.2, cycles=1), rk.Regime.SLIDE_ROCK
+    r = rk.simulate(system, motion, duration=1.0)
+    assert r.t[0] == 0.0 and r.regime[0] == expected
+    assert r.summary()["first_rocking_time"] == 0.0
+    if expected == rk.Regime.SLIDE_ROCK:
+        assert r.summary()["first_sliding_time"] == 0.0
+    assert r.events and all(e.time > 0.0 for e in r.events)
+
+
 def test_a_statue_released_tilted_and_turning_dissipates_its_initial_energy_and_reports_a_closed_balance():
     """A statue alone on a still floor, released at θ = 0.05 rad turning at θ̇ = 0.3 rad/s, rocks
     down to rest: its impacts dissipate exactly the energy it started with (sympy energy of the

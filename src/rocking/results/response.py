@@ -189,6 +189,8 @@ class Response:
 
     @property
     def exceeded_alpha_time(self) -> float | None:
+        """First time (s) |θ| passed α, beyond which gravity tips the statue further; the start
+        time for one released at or beyond α and turning outwards; None if it never did."""
         return _opt(self.raw_summary[C.S_EXCEED_TIME])
 
     @property

@@ -669,6 +669,11 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                         # touched g·tan α and turned back): θ went the wrong way from the start.
                         # The uplift did not happen; the statue stays at rest.
                         x_first, first = 0.0, i
+                    elif i == EXCEED and g1[i] < 0.0:
+                        # Released exactly at θ = α and turning outwards: α is exceeded at
+                        # the start (without this, a statue that falls would report that it
+                        # never passed α).
+                        x_first, first = 0.0, i
                     continue
                 g_lo = _guard_at(p, sig, s, y, F, h, x_lo, loc, t, exceeded, work, gbuf, i)
                 x = _locate(p, sig, s, y, F, h, loc, t, exceeded, work, gbuf, i, g_lo, g1[i], x_lo, 1.0)

@@ -69,11 +69,12 @@ the step end), and one that stays positive never fires. The other cases:
   ``select_regime`` resolved with a tolerance, or no consistent regime): a friction-cone or
   rocking-threshold guard then ends its regime at once, at the start (an immediate SLIP or
   UPLIFT event, as the compiled solver does for such a guard that stays negative over its first
-  step); any other guard (STOP, IMPACT) is ignored until it has come back above zero — it is
+  step), and so does α − |θ| (a statue released at α turning outwards has exceeded α at the
+  start); any other guard (STOP, IMPACT) is ignored until it has come back above zero — it is
   then watched as a direction +1 "arming" event, and the integration restarts there with the
   guard armed. Counted in ``diagnostics["ignored_start_events"]``;
-* a guard that is < 0 at the start (the selected regime is not consistent): a threshold guard
-  ends its regime at once (``diagnostics["immediate_events"]``; if several, the last in guard
+* a guard that is < 0 at the start (the selected regime is not consistent, or a statue released
+  beyond α): a threshold guard or α − |θ| ends its regime at once (``diagnostics["immediate_events"]``; if several, the last in guard
   order, as in the compiled loop); any other guard is armed only once it comes back up.
 
 Peaks
@@ -135,6 +136,8 @@ _SENTINEL = 1e-300  # |value| standing for a guard's right-hand limit sign at th
 # threshold tie resolved the wrong way (IMMEDIATE: its regime ends at once).
 ARMED, ZERO, DISARMED, IMMEDIATE = 0, 1, 2, 3
 _THRESHOLDS = (SLIP_TO_NEGATIVE, SLIP_TO_POSITIVE, ROCK_TO_NEGATIVE, ROCK_TO_POSITIVE)  # cone, rocking threshold
+# ... and α − |θ| for a statue released at or beyond α, turning outwards: α is exceeded at the start
+_AT_ONCE = _THRESHOLDS + (EXCEED,)
 
 
 class _Singular(Exception):
@@ -361,7 +364,7 @@ def integrate_crosscheck(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, 
             # A held/at-rest regime whose threshold is already exceeded ends at once (the compiled
             # solver: an unarmed threshold guard that stays negative fires at the step start; of
             # several, the last in guard order is taken).
-            immediate = [i for i in active if i in _THRESHOLDS and modes[i] in (DISARMED, IMMEDIATE)]
+            immediate = [i for i in active if i in _AT_ONCE and modes[i] in (DISARMED, IMMEDIATE)]
             sol = None
             if immediate:
                 fired, te = max(immediate), t_start
@@ -435,7 +438,7 @@ def integrate_crosscheck(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, 
                     # a threshold guard ends its regime at once; any other guard is ignored until it
                     # has been positive (as the compiled solver does). Restart at the same instant.
                     st["ignored_start"] += 1
-                    override = {fired: IMMEDIATE if fired in _THRESHOLDS else DISARMED}
+                    override = {fired: IMMEDIATE if fired in _AT_ONCE else DISARMED}
                     continue
                 if turning:
                     for tk, yk in zip(res.t_events[-1], res.y_events[-1]):
