@@ -1915,6 +1915,28 @@ def test_a_floor_motion_that_jumps_at_the_start_starts_the_run_in_the_regime_aft
     assert r.events and all(e.time > 0.0 for e in r.events)
 
 
+def test_the_top_face_warning_comes_exactly_when_the_required_friction_passes_the_top_face_mu():
+    """The statue's friction on its pedestal is only checked (the model holds it stuck): the
+    warning "the statue would slip on the pedestal" must appear when, and only when, the largest
+    required top friction (the summary's, over rocking and impacts) exceeds the top face's μs.
+    Run with μs,top 0.1 % above and below that requirement, measured first with no top friction
+    (which leaves the motion unchanged: the runs must agree to the bit). Kills compiled.py:785
+    recording the warning at an impact that needs *less* than μs,top (`top <= μ`)."""
+    def run(top):
+        statue = rk.Statue(width=1.0, height=4.0, mass=1.0, restitution=0.8, friction=top)
+        system = rk.System(statue=statue, pedestal=rk.Pedestal(mass=1.0, friction=rk.Friction(static=0.4, kinetic=0.3)))
+        return rk.simulate(system, rk.Harmonic(amplitude=6.75, frequency=1.2, cycles=3), save=False)
+
+    free = run(None)
+    need = free.summary()["required_top_friction"]
+    assert free.summary()["impacts"] >= 2 and 0.3 < need < 2.0
+    for factor, warned in ((1.001, False), (0.999, True)):
+        r = run(rk.Friction(static=factor * need, kinetic=0.5 * need))
+        assert r.summary()["peak_rotation"] == free.summary()["peak_rotation"]
+        assert r.summary()["required_top_friction"] == need
+        assert any("would slip on the pedestal" in w for w in r.warnings) == warned
+
+
 def test_a_statue_released_tilted_and_turning_dissipates_its_initial_energy_and_reports_a_closed_balance():
     """A statue alone on a still floor, released at θ = 0.05 rad turning at θ̇ = 0.3 rad/s, rocks
     down to rest: its impacts dissipate exactly the energy it started with (sympy energy of the
