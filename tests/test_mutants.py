@@ -469,6 +469,35 @@ def test_a_jump_of_the_floor_motion_that_starts_the_rocking_is_an_event():
     assert r.overturned
 
 
+def test_a_record_touching_the_rocking_threshold_at_a_sample_leaves_the_statue_at_rest():
+    """A record rises linearly to g·tan α exactly at its sample t = 0.2 s and turns back: the
+    threshold guard reaches zero at the end of a step cut by that sample, so the uplift is located
+    on the sample itself, and θ goes the wrong way at once: UPLIFT and SETTLE at 0.2 s, no
+    rocking (a regime counts as entered only once it lasts). The same record rising on past the
+    threshold starts the rocking on that sample. Kills compiled.py's piece lookup after an
+    event that skips breakpoints only while `< t` (ac02c7f0 of the fourteenth round): the
+    event then sits on the old piece, a zero-length step follows, and the tie counts as
+    rocking begun at 0.2 s."""
+    from rocking.excitation.record import GroundMotion
+    from rocking.models.regimes import EventKind, Regime
+
+    statue = rk.Statue(width=0.3, height=1.2, mass=1.0)
+    a_uplift = rk.g * 0.25
+    t = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5]
+    touch = rk.simulate(rk.System(statue=statue),
+                        GroundMotion(time=np.array(t), values=a_uplift * np.array([0, 0.5, 1, 0.5, 0.5, 0])),
+                        duration=2.0)
+    assert touch.events == [(0.2, EventKind.UPLIFT, Regime.REST, Regime.ROCK),
+                            (0.2, EventKind.SETTLE, Regime.ROCK, Regime.REST)]
+    assert touch.summary()["first_rocking_time"] is None
+    assert touch.peak_rotation == 0.0 and touch.status == "completed"
+    cross = rk.simulate(rk.System(statue=statue),
+                        GroundMotion(time=np.array(t), values=a_uplift * np.array([0, 0.5, 1, 1.5, 0.5, 0])),
+                        duration=2.0, throw=False)
+    assert cross.events[0] == (0.2, EventKind.UPLIFT, Regime.REST, Regime.ROCK)
+    assert cross.summary()["first_rocking_time"] == 0.2 and cross.peak_rotation > 1e-3
+
+
 def test_top_friction_needed_at_impacts_on_a_sliding_pedestal():
     """On a light pedestal (20 kg under the 50 kg statue, μs = 0.18) that slides under a 2.5 m/s²
     sine pulse, every impact of the statue happens while the pedestal slides (u̇⁻ ≈ ±0.01 m/s),
@@ -2112,3 +2141,37 @@ def test_the_required_top_friction_is_the_peak_of_the_base_force_ratio_between_s
     inside = np.abs(r.theta) <= r.alpha
     grid_peak = float(np.max(r.contact_forces()["top_friction_ratio"][inside]))
     assert r.summary()["required_top_friction"] == pytest.approx(grid_peak, rel=1e-5)
+
+
+def test_the_pedestal_uplift_warning_compares_the_floor_pressure_centre_with_the_half_width():
+    """A 0.2 × 1.2 m statue rocks on a 500 kg, 1 m tall pedestal held by μ = 1 (it never slides)
+    under 3 m/s² at 2 Hz. The floor's normal force acts at x_N (moment balance of the pedestal,
+    derivation §3.5); the pedestal's width enters nothing but the check |x_N| ≤ b₁. Measured on
+    a 100 µs grid: max |x_N| = X ≈ 0.178 m. A pedestal 2 % wider than 2X gives no uplift warning
+    and the same motion to the bit; 5 % narrower gives the warning, no earlier than the grid's
+    first |x_N| > b₁ (less 1 ms: the check runs at step ends and events). Kills compiled.py's
+    check at FSAL step ends reading θ̇ for ü (f6121b70 of the fourteenth round: x_N then carries
+    ½·h₁·m₁·θ̇/N, up to 6.7 % larger, and the wider pedestal is said to uplift)."""
+    statue = rk.Statue(width=0.2, height=1.2, mass=100.0)
+    held = rk.Friction(static=1.0, kinetic=1.0)
+    motion = rk.Harmonic(amplitude=3.0, frequency=2.0, cycles=3)
+
+    def run(width, save_dt=None):
+        pedestal = rk.Pedestal(mass=500.0, friction=held, width=width, height=1.0)
+        options = rk.Options(save_dt=save_dt) if save_dt else rk.Options()
+        return rk.simulate(rk.System(statue=statue, pedestal=pedestal), motion, duration=4.0, options=options)
+
+    def uplift(r):
+        return [w for w in r.warnings if "pedestal would uplift" in w]
+
+    wide = run(3.0, 1e-4)
+    x_n = np.abs(wide.contact_forces()["x_N"])
+    big = float(np.nanmax(x_n))
+    assert 0.15 < big < 0.2 and not uplift(wide) and wide.summary()["peak_sliding"] == 0.0
+    above, below = run(2.0 * big * 1.02), run(2.0 * big * 0.95)
+    assert not uplift(above), above.warnings
+    assert above.peak_rotation == wide.peak_rotation
+    (warning,) = uplift(below)
+    t_warning = float(re.match(r"from t = ([0-9.]+) s", warning).group(1))
+    first_over = float(wide.t[np.nonzero(x_n > big * 0.95)[0][0]])
+    assert t_warning >= first_over - 1e-3
