@@ -102,7 +102,7 @@ MODULES: dict[str, list[str]] = {
     # The stack engine (issue 11): its own tests first, then the cross-checks against the
     # two-body solver and the Moreau–Jean solver, then the studies that read its summaries.
     "stack/kinematics.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
-    "stack/lcp.py": ["test_stack_engine.py", "test_stack_timestepping.py", "test_stack_crosscheck.py"],
+    "stack/lcp.py": ["test_stack_timestepping.py", "test_stack_crosscheck.py", "test_stack_engine.py"],
     "stack/modes.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
     "stack/engine.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
     "stack/model.py": ["test_stack_config.py", "test_stack_engine.py", "test_input_errors.py"],
