@@ -172,6 +172,20 @@ def test_bad_stack_input_is_one_error_naming_the_field(change, field, words):
         assert w in message, (w, message)
 
 
+def test_a_stack_built_in_python_names_the_block_that_has_no_overlap():
+    """The same rule without a file: blocks are counted from the floor, from 0 as in a file's
+    [[blocks]], so the vase (the third block) is blocks[2]; its overlap with the statue,
+    [0.4, 0.6] ∩ [−0.2, 0.2], is empty."""
+    from rocking.stack import Block, Interface
+
+    blocks = (Block(width=1.0, height=0.4, mass=300.0), Block(width=0.4, height=1.2, mass=100.0),
+              Block(width=0.2, height=0.3, mass=5.0, offset=0.5))
+    with pytest.raises(ValueError, match=r"^blocks\[2\]\.offset = 0\.5 m leaves no overlap .*width -0\.2 m"):
+        Stack(blocks=blocks, interfaces=(Interface(),) * 3)
+    with pytest.raises(ValueError, match=r"^interfaces: 3 blocks need 3 interfaces .*got 2$"):
+        Stack(blocks=blocks, interfaces=(Interface(),) * 2)
+
+
 def test_a_file_without_statue_nor_blocks_says_both():
     with pytest.raises(ConfigError, match=r"^statue: missing \(required\); or describe a stack .*\[\[blocks\]\]"):
         load_config({"motion": BASE["motion"]})
