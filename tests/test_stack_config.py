@@ -184,6 +184,14 @@ def test_a_stack_built_in_python_names_the_block_that_has_no_overlap():
         Stack(blocks=blocks, interfaces=(Interface(),) * 3)
     with pytest.raises(ValueError, match=r"^interfaces: 3 blocks need 3 interfaces .*got 2$"):
         Stack(blocks=blocks, interfaces=(Interface(),) * 2)
+    # the overlaps themselves, relative to the centre of the block below (the floor: block 1's
+    # rest position): a narrower block's own face, a wider one's the face below
+    ok = Stack(blocks=(Block(width=0.8, height=0.4, mass=300.0, offset=0.1),
+                       Block(width=0.3, height=1.2, mass=100.0, offset=-0.1),
+                       Block(width=0.6, height=0.3, mass=5.0)), interfaces=(Interface(),) * 3)
+    assert ok.overlap(1) == pytest.approx((-0.3, 0.5), abs=1e-15)
+    assert ok.overlap(2) == pytest.approx((-0.25, 0.05), abs=1e-15)
+    assert ok.overlap(3) == pytest.approx((-0.15, 0.15), abs=1e-15)
 
 
 def test_a_file_without_statue_nor_blocks_says_both():

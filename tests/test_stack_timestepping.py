@@ -371,6 +371,13 @@ def test_restitution_is_not_implemented():
         moreau_jean(two, zero)
 
 
+def test_a_run_shorter_than_a_step_is_one_short_step():
+    """t_end < Δt: one step, of length t_end (the last step is shortened to end at t_end)."""
+    res = moreau_jean(single(), zero, lambda t: -2 * G, t_end=4e-4, dt=1e-3)
+    assert res.t.tolist() == [0.0, 4e-4]
+    assert res.velocity[-1, 0, 1] == pytest.approx(G * 4e-4, rel=1e-12)  # free flight for 0.4 ms
+
+
 @pytest.mark.parametrize(
     "kwargs,match",
     [
