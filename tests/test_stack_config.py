@@ -192,6 +192,26 @@ def test_a_stack_built_in_python_names_the_block_that_has_no_overlap():
     assert ok.overlap(1) == pytest.approx((-0.3, 0.5), abs=1e-15)
     assert ok.overlap(2) == pytest.approx((-0.25, 0.05), abs=1e-15)
     assert ok.overlap(3) == pytest.approx((-0.15, 0.15), abs=1e-15)
+    # not blocks nor interfaces: named by their place
+    with pytest.raises(ValueError, match=r"^blocks\[1\] must be a Block, got 'statue'$"):
+        Stack(blocks=(blocks[0], "statue"), interfaces=(Interface(),) * 2)
+    with pytest.raises(ValueError, match=r"^interfaces\[0\] must be an Interface, got 0\.3$"):
+        Stack(blocks=blocks[:1], interfaces=(0.3,))
+
+
+def test_blocks_interfaces_and_stacks_are_immutable():
+    """A stack is a value (rocking.stack.model: "immutable description"): nothing may change a
+    block's size under a run that has read it."""
+    import dataclasses
+
+    from rocking.stack import Block, Interface
+
+    block = Block(width=0.3, height=1.2, mass=100.0)
+    stack = Stack(blocks=(block,), interfaces=(Interface(),))
+    for obj, field, value in ((block, "width", 0.5), (stack.interfaces[0], "restitution", 0.5),
+                              (stack, "blocks", ())):
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            setattr(obj, field, value)
 
 
 def test_a_file_without_statue_nor_blocks_says_both():

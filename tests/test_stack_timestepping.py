@@ -102,6 +102,23 @@ def test_sliding_block_velocity_and_stop_time():
         assert np.abs(res.pose[:, 0, 1] - 0.2).max() < 1e-12
 
 
+def test_a_block_on_a_frictionless_face_keeps_its_place_in_space():
+    """μ = 0 between a squat block and a pedestal that never slips on the floor: no horizontal
+    force reaches the block, which stays where it was in space, so on the pedestal (the floor
+    frame) it moves at −A t under a_h = A (½ A t² back after t). The frictionless contacts have
+    no tangential unknowns while the floor's have: the LCP mixes the two. The θ = ½ positions of
+    a uniform acceleration are exact: round-off only (1e-12 m and m/s over 500 steps)."""
+    stack = Stack(blocks=(Block(width=1.0, height=0.3, mass=500.0), Block(width=0.6, height=0.1, mass=20.0)),
+                  interfaces=(Interface(), Interface(friction=Friction(static=0.0))))
+    a = 0.2 * G
+    res = moreau_jean(stack, lambda t: a, t_end=0.5, dt=1e-3)
+    assert res.status == "completed"
+    assert np.abs(res.velocity[:, 1, 0] + a * res.t).max() < 1e-12
+    assert np.abs(res.pose[:, 1, 0] + 0.5 * a * res.t**2).max() < 1e-12
+    assert np.abs(res.pose[:, 0, :] - rest_pose(stack)[0]).max() < 1e-12  # the pedestal holds
+    assert np.abs(res.pose[:, 1, 1:] - rest_pose(stack)[1, 1:]).max() < 1e-12  # flat, on its face
+
+
 def test_static_then_kinetic_friction():
     """μs = 0.4, μk = 0.3, constant a_h = A. Between μk g and μs g the block never starts (static
     friction holds it: round-off only). Above μs g it slides at −(A − μk g): the first step uses μs
@@ -376,6 +393,7 @@ def test_a_run_shorter_than_a_step_is_one_short_step():
     res = moreau_jean(single(), zero, lambda t: -2 * G, t_end=4e-4, dt=1e-3)
     assert res.t.tolist() == [0.0, 4e-4]
     assert res.velocity[-1, 0, 1] == pytest.approx(G * 4e-4, rel=1e-12)  # free flight for 0.4 ms
+    assert len(moreau_jean(single(), zero, t_end=1e-3).t) == 11  # the default step: 1e-4 s
 
 
 @pytest.mark.parametrize(
