@@ -199,6 +199,15 @@ def test_a_stack_built_in_python_names_the_block_that_has_no_overlap():
         Stack(blocks=blocks[:1], interfaces=(0.3,))
 
 
+def test_an_interface_takes_restitution_from_0_to_1_inclusive():
+    from rocking.stack import Interface
+
+    assert [Interface(restitution=r).restitution for r in (0.0, 0.5, 1.0)] == [0.0, 0.5, 1.0]
+    for bad in (-1e-12, 1.0 + 1e-12, True):
+        with pytest.raises(ValueError, match=r"^interface\.restitution must lie in \[0, 1\]"):
+            Interface(restitution=bad)
+
+
 def test_blocks_interfaces_and_stacks_are_immutable():
     """A stack is a value (rocking.stack.model: "immutable description"): nothing may change a
     block's size under a run that has read it."""

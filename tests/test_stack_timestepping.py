@@ -332,6 +332,23 @@ def test_two_blocks_at_rest_stay_at_rest(stack):
     assert np.abs(res.velocity).max() < 1e-12
 
 
+def test_relative_pose_of_a_moved_and_turned_lower_block():
+    """relative_pose reads block 2 in block 1's body frame: with block 1 at (X1, Y1, Θ1) and block 2
+    placed at block 1's body point (ξ, η) = (0.12, 0.9) turned by φ = 0.07 rad more, it returns
+    (ξ, η, φ) (placement written here from the module's convention: a body point (ξ, η) lies at
+    (X + ξ cos Θ + η sin Θ, Y − ξ sin Θ + η cos Θ)); round-off only."""
+    from rocking.stack.timestepping import StackTimeSteppingResult
+
+    x1, y1, th1, xi, eta, phi = 0.31, 0.27, -0.2, 0.12, 0.9, 0.07
+    c, s = math.cos(th1), math.sin(th1)
+    pose = np.array([[[x1, y1, th1], [x1 + xi * c + eta * s, y1 - xi * s + eta * c, th1 + phi]]])
+    res = StackTimeSteppingResult(t=np.zeros(1), pose=pose, velocity=np.zeros_like(pose), overturned=(False, False),
+                                  overturn_time=(math.nan, math.nan), status="completed", dt=1e-3, theta=0.5)
+    rel = relative_pose(res)
+    assert rel[0, 0] == pytest.approx([x1, y1, th1], abs=1e-15)
+    assert rel[0, 1] == pytest.approx([xi, eta, phi], abs=1e-14)
+
+
 def test_relative_pose_at_rest():
     """Block 2 of the statue on pedestal sits 0.1 m right of the pedestal's centre, (0.5 + 1.2)/2
     above it, unrotated; block 1 is given in the floor frame."""
@@ -352,6 +369,36 @@ def test_overturn_is_detected_and_stops_the_run():
     assert res.status == "overturned" and res.overturned == (True,)
     assert res.pose[-1, 0, 2] < -math.pi / 2 < res.pose[-2, 0, 2]
     assert res.t[-1] == pytest.approx(res.overturn_time[0]) and res.t[-1] < 5.0
+
+
+def test_a_statue_falling_off_a_held_pedestal_stops_the_run_past_a_right_angle():
+    """A statue on a wide pedestal (both never slip) under a strong push, 3 g B/H of the statue:
+    it topples; the run stops at the first step where its rotation relative to the pedestal
+    passes π/2. (On a pedestal narrower than 1.5 m the other rule stops it first: its centre,
+    0.75 m out from its middle when it lies flat, leaves the face.) Only block 2 is flagged."""
+    stack = Stack(blocks=(Block(width=2.4, height=0.5, mass=300.0), Block(width=0.3, height=1.2, mass=100.0)),
+                  interfaces=(Interface(), Interface()))
+    res = moreau_jean(stack, lambda t: 3 * G * 0.3 / 1.2, t_end=5.0, dt=1e-3)
+    assert res.status == "overturned" and res.overturned == (False, True)
+    phi = res.pose[:, 1, 2] - res.pose[:, 0, 2]
+    assert phi[-1] < -math.pi / 2 < phi[-2]
+    assert res.t[-1] == pytest.approx(res.overturn_time[1])
+
+
+def test_two_blocks_that_cannot_slip_on_each_other_slide_as_one():
+    """A squat block on a squat pedestal, never slipping between them, μ = 0.2 on the floor, under
+    a_h = 0.5 g: neither can rock (B/H = 4 and more), so the pair slides as one body at
+    −(0.5 − 0.2) g t from the first step (μs = μk; the total weight presses the floor), with no
+    relative motion at the interface; θ = ½ positions of a uniform acceleration are exact:
+    round-off only."""
+    stack = Stack(blocks=(Block(width=1.2, height=0.3, mass=300.0), Block(width=0.8, height=0.2, mass=100.0)),
+                  interfaces=(Interface(friction=Friction(static=0.2)), Interface()))
+    a = 0.5 * G
+    res = moreau_jean(stack, lambda t: a, t_end=0.3, dt=1e-3)
+    v_exact = -(a - 0.2 * G) * res.t
+    assert np.abs(res.velocity[:, :, 0] - v_exact[:, None]).max() < 1e-11
+    assert np.abs(res.velocity[:, :, 1:]).max() < 1e-11
+    assert np.abs(res.pose[:, 1, 0] - res.pose[:, 0, 0]).max() < 1e-12
 
 
 def test_top_block_slides_off():
