@@ -1,5 +1,5 @@
 """The event-driven stack engine against the independent Moreau–Jean time stepping
-(rocking.stack.timestepping, which shares no physics code with it), on three stacks.
+(rocking.stack.timestepping, which shares no physics code with it), on four stacks.
 
 The two converge to each other as Δt → 0. Up to the first impact the time stepping is first
 order or better, which these tests assert: the error at Δt = 1e-4 s must be at most 1/2.5 of the
@@ -34,6 +34,13 @@ CASES = {
               interfaces=(Interface(friction=F(static=0.4, kinetic=0.4)), Interface(friction=F(static=0.6, kinetic=0.6)),
                           Interface(friction=F(static=0.5, kinetic=0.5)))),
         rk.SinePulse(amplitude=3.0, frequency=1.5), 0.8),
+    # a box wider than its plinth rocks on the plinth's top corners (from 0.152 s), and the
+    # plinth on the floor (from 0.172 s): the contacts of the upper interface are the lower
+    # block's corners under the box's bottom face
+    "wide box on a narrow plinth": (
+        Stack(blocks=(Block(width=0.4, height=0.5, mass=200.0), Block(width=0.8, height=0.8, mass=50.0)),
+              interfaces=(Interface(), Interface())),
+        rk.SinePulse(amplitude=6.0, frequency=1.0), 0.3),
 }
 
 
