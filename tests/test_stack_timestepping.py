@@ -319,10 +319,13 @@ def test_rocking_rate_converges_first_order():
         statue_on_pedestal(top_friction=Friction(static=0.5, kinetic=0.4)),
         Stack(blocks=(Block(width=0.3, height=0.6, mass=100.0), Block(width=0.3, height=0.6, mass=100.0)),
               interfaces=(Interface(), Interface(friction=Friction(static=0.6)))),
+        Stack(blocks=(Block(width=1.2, height=0.4, mass=400.0), Block(width=0.4, height=1.4, mass=150.0),
+                      Block(width=0.2, height=0.45, mass=8.0, offset=0.05)),
+              interfaces=(Interface(friction=Friction(static=0.4)), Interface(), Interface(friction=Friction(static=0.5)))),
     ],
-    ids=["statue on pedestal", "with friction on top", "equal widths (coincident corners)"],
+    ids=["statue on pedestal", "with friction on top", "equal widths (coincident corners)", "three blocks"],
 )
-def test_two_blocks_at_rest_stay_at_rest(stack):
+def test_blocks_at_rest_stay_at_rest(stack):
     """Gravity alone: the LCP must balance it exactly each step (the resting contacts are
     statically indeterminate). Any drift would be round-off: < 1e-12 m and rad over 2 s (2000
     steps); measured ~1e-15."""
