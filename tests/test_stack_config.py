@@ -210,13 +210,17 @@ def test_an_interface_takes_restitution_from_0_to_1_inclusive():
 
 def test_blocks_interfaces_and_stacks_are_immutable():
     """A stack is a value (rocking.stack.model: "immutable description"): nothing may change a
-    block's size under a run that has read it."""
+    block's size under a run that has read it. And its parts are built by keyword only."""
     import dataclasses
 
     from rocking.stack import Block, Interface
 
     block = Block(width=0.3, height=1.2, mass=100.0)
     stack = Stack(blocks=(block,), interfaces=(Interface(),))
+    # and each is built by keyword only: a width and a height are too easy to swap
+    for build in (lambda: Block(0.3, 1.2, 100.0), lambda: Interface(None, 0.5), lambda: Stack((block,), (Interface(),))):
+        with pytest.raises(TypeError):
+            build()
     for obj, field, value in ((block, "width", 0.5), (stack.interfaces[0], "restitution", 0.5),
                               (stack, "blocks", ())):
         with pytest.raises(dataclasses.FrozenInstanceError):

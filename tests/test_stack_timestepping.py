@@ -444,6 +444,21 @@ def test_a_run_shorter_than_a_step_is_one_short_step():
     assert res.t.tolist() == [0.0, 4e-4]
     assert res.velocity[-1, 0, 1] == pytest.approx(G * 4e-4, rel=1e-12)  # free flight for 0.4 ms
     assert len(moreau_jean(single(), zero, t_end=1e-3).t) == 11  # the default step: 1e-4 s
+    # save_every keeps every n-th step, and the last one whatever n
+    kept = moreau_jean(single(), zero, t_end=1e-2, dt=1e-3, save_every=3)
+    assert kept.t == pytest.approx([0.0, 3e-3, 6e-3, 9e-3, 1e-2], abs=1e-15)
+
+
+def test_a_failed_contact_lcp_says_at_which_step(monkeypatch):
+    """An LCP that Lemke's method cannot solve stops the run with the step's start time."""
+    import rocking.stack.timestepping as ts
+
+    def failing(m, q):
+        raise LCPError("ray termination")
+
+    monkeypatch.setattr(ts, "lemke", failing)
+    with pytest.raises(LCPError, match=r"^moreau_jean: the contact LCP of the step from t = 0 s failed: ray termination"):
+        moreau_jean(single(), zero, t_end=1e-2, dt=1e-3)
 
 
 @pytest.mark.parametrize(
