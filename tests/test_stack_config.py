@@ -8,6 +8,7 @@ short (half a second of a sine pulse), so once the stack engine is compiled each
 from __future__ import annotations
 
 import copy
+import math
 import json
 import re
 import tomllib
@@ -192,6 +193,19 @@ def test_a_stack_built_in_python_names_the_block_that_has_no_overlap():
     assert ok.overlap(1) == pytest.approx((-0.3, 0.5), abs=1e-15)
     assert ok.overlap(2) == pytest.approx((-0.25, 0.05), abs=1e-15)
     assert ok.overlap(3) == pytest.approx((-0.15, 0.15), abs=1e-15)
+    # faces that only touch at a point: an overlap of zero width is no support either
+    # (binary-exact sizes: the right end of one face is the left end of the other to the bit)
+    with pytest.raises(ValueError, match=r"^blocks\[1\]\.offset = 0\.375 m leaves no overlap .*width 0 m"):
+        Stack(blocks=(Block(width=0.5, height=0.4, mass=300.0), Block(width=0.25, height=0.5, mass=10.0, offset=0.375)),
+              interfaces=(Interface(),) * 2)
+    # a block's own errors name it by its name, or by "?" without one
+    with pytest.raises(ValueError, match=r"^blocks\[vase\]\.width"):
+        Block(name="vase", width=-0.2, height=0.3, mass=5.0)
+    with pytest.raises(ValueError, match=r"^blocks\[\?\]\.mass"):
+        Block(width=0.2, height=0.3, mass=0.0)
+    for offset in ("left", True, math.nan, math.inf):
+        with pytest.raises(ValueError, match=r"^blocks\[\?\]\.offset must be a finite number \(m\)"):
+            Block(width=0.2, height=0.3, mass=5.0, offset=offset)
     # not blocks nor interfaces: named by their place
     with pytest.raises(ValueError, match=r"^blocks\[1\] must be a Block, got 'statue'$"):
         Stack(blocks=(blocks[0], "statue"), interfaces=(Interface(),) * 2)

@@ -133,6 +133,17 @@ def test_static_then_kinetic_friction():
     assert np.abs(v - (-(a - 0.3 * G) * slides.t)).max() <= (0.4 - 0.3) * G * dt * (1 + 1e-9)
 
 
+def test_a_block_launched_sliding_uses_kinetic_friction_from_the_first_step():
+    """A squat block set sliding at v0 = 1 m/s (μs = 0.5, μk = 0.3): its contacts are new, and their
+    tangential speed (1 m/s) is far above g Δt (1e-2 m/s), so they take μk at once. It slows at
+    μk g exactly (θ = ½ integrates the uniform deceleration exactly: round-off), stopping at
+    v0/(μk g) = 0.340 s."""
+    stack = single(width=2.0, height=0.4, friction=Friction(static=0.5, kinetic=0.3))
+    velocity0 = np.array([[1.0, 0.0, 0.0]])
+    res = moreau_jean(stack, zero, t_end=0.3, dt=1e-3, velocity0=velocity0)
+    assert np.abs(res.velocity[:, 0, 0] - (1.0 - 0.3 * G * res.t)).max() < 1e-12
+
+
 # 3. rocking onset -----------------------------------------------------------------------------
 
 
@@ -472,6 +483,8 @@ def test_a_failed_contact_lcp_says_at_which_step(monkeypatch):
         ({"t_end": 0.0}, "t_end"),
         ({"save_every": 0}, "save_every"),
         ({"pose0": np.zeros((2, 3))}, "pose0"),
+        ({"gravity": math.nan}, "gravity"),
+        ({"gravity": "9.81"}, "gravity"),
     ],
 )
 def test_bad_arguments(kwargs, match):
