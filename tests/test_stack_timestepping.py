@@ -349,18 +349,24 @@ def test_blocks_at_rest_stay_at_rest(stack):
 def test_relative_pose_of_a_moved_and_turned_lower_block():
     """relative_pose reads block 2 in block 1's body frame: with block 1 at (X1, Y1, Θ1) and block 2
     placed at block 1's body point (ξ, η) = (0.12, 0.9) turned by φ = 0.07 rad more, it returns
-    (ξ, η, φ) (placement written here from the module's convention: a body point (ξ, η) lies at
+    (ξ, η, φ), and block 3 likewise in block 2's frame (placement written here from the module's convention: a body point (ξ, η) lies at
     (X + ξ cos Θ + η sin Θ, Y − ξ sin Θ + η cos Θ)); round-off only."""
     from rocking.stack.timestepping import StackTimeSteppingResult
 
-    x1, y1, th1, xi, eta, phi = 0.31, 0.27, -0.2, 0.12, 0.9, 0.07
-    c, s = math.cos(th1), math.sin(th1)
-    pose = np.array([[[x1, y1, th1], [x1 + xi * c + eta * s, y1 - xi * s + eta * c, th1 + phi]]])
-    res = StackTimeSteppingResult(t=np.zeros(1), pose=pose, velocity=np.zeros_like(pose), overturned=(False, False),
-                                  overturn_time=(math.nan, math.nan), status="completed", dt=1e-3, theta=0.5)
+    def placed(x, y, th, xi, eta, phi):  # block k + 1's pose from block k's and the relative one
+        c, s = math.cos(th), math.sin(th)
+        return [x + xi * c + eta * s, y - xi * s + eta * c, th + phi]
+
+    first = [0.31, 0.27, -0.2]
+    second = placed(*first, 0.12, 0.9, 0.07)
+    third = placed(*second, -0.05, 0.6, -0.3)  # a third block: each is read against the one under it
+    pose = np.array([[first, second, third]])
+    res = StackTimeSteppingResult(t=np.zeros(1), pose=pose, velocity=np.zeros_like(pose), overturned=(False,) * 3,
+                                  overturn_time=(math.nan,) * 3, status="completed", dt=1e-3, theta=0.5)
     rel = relative_pose(res)
-    assert rel[0, 0] == pytest.approx([x1, y1, th1], abs=1e-15)
-    assert rel[0, 1] == pytest.approx([xi, eta, phi], abs=1e-14)
+    assert rel[0, 0] == pytest.approx(first, abs=1e-15)
+    assert rel[0, 1] == pytest.approx([0.12, 0.9, 0.07], abs=1e-14)
+    assert rel[0, 2] == pytest.approx([-0.05, 0.6, -0.3], abs=1e-14)
 
 
 def test_relative_pose_at_rest():
