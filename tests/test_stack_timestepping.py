@@ -489,6 +489,8 @@ def test_a_failed_contact_lcp_says_at_which_step(monkeypatch):
         ({"t_end": 0.0}, "t_end"),
         ({"save_every": 0}, "save_every"),
         ({"pose0": np.zeros((2, 3))}, "pose0"),
+        ({"dt": True}, "dt"),
+        ({"t_end": "1"}, "t_end"),
         ({"gravity": math.nan}, "gravity"),
         ({"gravity": "9.81"}, "gravity"),
     ],
