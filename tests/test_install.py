@@ -243,3 +243,32 @@ def test_cli_input_errors_come_before_the_compilation(capsys, cold, tmp_path):
     assert main(["run", str(bad)]) == 2
     _, err = capsys.readouterr()
     assert "compiling" not in err and cold == []
+
+
+def test_the_second_core_does_not_drop_the_first_cores_fresh_cache(tmp_path, monkeypatch):
+    """The set-up compiles the solver, then the stack engine. Importing the stack engine used to
+    find no fingerprint of its own and drop every cache in the folders of its sources, solver/
+    among them: the solver just compiled was compiled again by the next command (seen in a fresh
+    clone: its cache rewritten during the tests, 75 s). One fingerprint now covers both cores: a
+    refresh with nothing changed keeps every cache, and an edit to any shared source drops both."""
+    from rocking import _numba_cache as nc
+
+    files = sorted(set(nc.SOLVER_CORE) | set(nc.STACK_CORE))
+    for name in files:
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_bytes((nc.PACKAGE / name).read_bytes())
+    monkeypatch.setattr(nc, "PACKAGE", tmp_path)
+
+    def cached(folder):
+        return sorted(p.name for p in (tmp_path / folder / "__pycache__").glob("*.nb[ic]"))
+
+    nc.refresh()  # the solver package's import: no fingerprint yet
+    for folder, name in (("solver", "compiled.integrate-1.py311.nbi"), ("stack", "engine.integrate-1.py311.nbi")):
+        (tmp_path / folder / "__pycache__").mkdir(exist_ok=True)
+        (tmp_path / folder / "__pycache__" / name).write_text("compiled")
+    nc.refresh()  # the stack package's import, and any later process: nothing changed
+    assert cached("solver") == ["compiled.integrate-1.py311.nbi"]
+    assert cached("stack") == ["engine.integrate-1.py311.nbi"]
+    (tmp_path / "excitation" / "signal.py").write_text("# edited\n", encoding="utf-8")
+    nc.refresh()  # a shared source changed: both cores are stale
+    assert cached("solver") == [] and cached("stack") == []

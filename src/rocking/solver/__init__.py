@@ -9,13 +9,7 @@ the cache when any of them changed.
 
 from __future__ import annotations
 
-from .._numba_cache import refresh
+from .._numba_cache import SOLVER_CORE, refresh
 
-_CORE = [
-    "models/dynamics.py", "models/modes.py", "models/parameters.py", "models/transitions.py", "contact/impact.py",
-    "excitation/signal.py", "excitation/base.py", "integrators/dopri5.py", "integrators/dop853.py",
-    "solver/compiled.py",
-]
-
-
-refresh(_CORE, "solver/__pycache__/core.sha256")
+_CORE = SOLVER_CORE
+refresh()

@@ -12,14 +12,10 @@ Examples
 [False, True]
 """
 
-from .._numba_cache import refresh
+from .._numba_cache import STACK_CORE, refresh
 
-# Everything the compiled engine is built from (numba's cache checks only each function's own file).
-_CORE = [
-    "stack/kinematics.py", "stack/modes.py", "stack/engine.py", "excitation/signal.py", "excitation/base.py",
-    "integrators/dop853.py", "integrators/dopri5.py", "solver/compiled.py",
-]
-refresh(_CORE, "stack/__pycache__/core.sha256")
+_CORE = STACK_CORE  # everything the compiled engine is built from (numba checks only each function's own file)
+refresh()
 
 from .model import Block, Interface, Stack  # noqa: E402
 from .simulate import StackResponse, simulate_stack  # noqa: E402
