@@ -8,8 +8,8 @@ short (half a second of a sine pulse), so once the stack engine is compiled each
 from __future__ import annotations
 
 import copy
-import math
 import json
+import math
 import re
 import tomllib
 from pathlib import Path
@@ -185,14 +185,6 @@ def test_a_stack_built_in_python_names_the_block_that_has_no_overlap():
         Stack(blocks=blocks, interfaces=(Interface(),) * 3)
     with pytest.raises(ValueError, match=r"^interfaces: 3 blocks need 3 interfaces .*got 2$"):
         Stack(blocks=blocks, interfaces=(Interface(),) * 2)
-    # the overlaps themselves, relative to the centre of the block below (the floor: block 1's
-    # rest position): a narrower block's own face, a wider one's the face below
-    ok = Stack(blocks=(Block(width=0.8, height=0.4, mass=300.0, offset=0.1),
-                       Block(width=0.3, height=1.2, mass=100.0, offset=-0.1),
-                       Block(width=0.6, height=0.3, mass=5.0)), interfaces=(Interface(),) * 3)
-    assert ok.overlap(1) == pytest.approx((-0.3, 0.5), abs=1e-15)
-    assert ok.overlap(2) == pytest.approx((-0.25, 0.05), abs=1e-15)
-    assert ok.overlap(3) == pytest.approx((-0.15, 0.15), abs=1e-15)
     # faces that only touch at a point: an overlap of zero width is no support either
     # (binary-exact sizes: the right end of one face is the left end of the other to the bit)
     with pytest.raises(ValueError, match=r"^blocks\[1\]\.offset = 0\.375 m leaves no overlap .*width 0 m"):
@@ -211,6 +203,19 @@ def test_a_stack_built_in_python_names_the_block_that_has_no_overlap():
         Stack(blocks=(blocks[0], "statue"), interfaces=(Interface(),) * 2)
     with pytest.raises(ValueError, match=r"^interfaces\[0\] must be an Interface, got 0\.3$"):
         Stack(blocks=blocks[:1], interfaces=(0.3,))
+
+
+def test_the_overlap_is_the_narrower_face_relative_to_the_block_below():
+    """Ends of each interface's contact, relative to the centre of the block below (the floor:
+    block 1's rest position): a narrower block's own face, a wider one's the face below."""
+    from rocking.stack import Block, Interface
+
+    stack = Stack(blocks=(Block(width=0.8, height=0.4, mass=300.0, offset=0.1),
+                          Block(width=0.3, height=1.2, mass=100.0, offset=-0.1),
+                          Block(width=0.6, height=0.3, mass=5.0)), interfaces=(Interface(),) * 3)
+    assert stack.overlap(1) == pytest.approx((-0.3, 0.5), abs=1e-15)
+    assert stack.overlap(2) == pytest.approx((-0.25, 0.05), abs=1e-15)
+    assert stack.overlap(3) == pytest.approx((-0.15, 0.15), abs=1e-15)
 
 
 def test_an_interface_takes_restitution_from_0_to_1_inclusive():

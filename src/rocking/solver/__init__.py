@@ -9,7 +9,6 @@ the cache when any of them changed.
 
 from __future__ import annotations
 
-from .._numba_cache import SOLVER_CORE, refresh
+from .._numba_cache import refresh
 
-_CORE = SOLVER_CORE
 refresh()

@@ -12,10 +12,9 @@ Examples
 [False, True]
 """
 
-from .._numba_cache import STACK_CORE, refresh
+from .._numba_cache import refresh
 
-_CORE = STACK_CORE  # everything the compiled engine is built from (numba checks only each function's own file)
-refresh()
+refresh()  # drops stale compiled code before the engine's modules are imported
 
 from .model import Block, Interface, Stack  # noqa: E402
 from .simulate import StackResponse, simulate_stack  # noqa: E402
