@@ -1,0 +1,159 @@
+"""Lemke's method (rocking.stack.lcp) against an independent solution of the same LCPs.
+
+The oracle enumerates complementary bases: for every set S of indices, solve M_SS z_S = −q_S
+with numpy and keep the z that has z ≥ 0 and w = Mz + q ≥ 0. It shares nothing with the pivoting
+but numpy's linear algebra, and it is exhaustive, so it is affordable for n ≤ 7 only.
+
+``lemke`` checks its own answer (residual within ``check``) and falls back on regularised
+problems, so a broken pivoting mostly shows as an answer that is right to 1e-6 instead of
+1e-12, or as an LCPError. The tests below therefore hold the answers to round-off, and run the
+plain pivoting on its own where its soundness on degenerate problems is the claim.
+"""
+
+import itertools
+
+import numpy as np
+import pytest
+
+from rocking.stack import lcp
+from rocking.stack.lcp import LCPError, lemke
+
+
+def enumerate_solutions(m, q, tol=1e-12):
+    """Every solution of the LCP (m, q) found among the complementary bases (nondegenerate ones)."""
+    n = q.size
+    found = []
+    for size in range(n + 1):
+        for support in itertools.combinations(range(n), size):
+            s = list(support)
+            z = np.zeros(n)
+            if s:
+                block = m[np.ix_(s, s)]
+                if abs(np.linalg.det(block)) < 1e-12:
+                    continue
+                z[s] = np.linalg.solve(block, -q[s])
+            w = m @ z + q
+            if z.min() >= -tol and w.min() >= -tol:
+                found.append(z)
+    return found
+
+
+def p_matrix(rng, n):
+    """AAᵀ + I plus a skew part: positive definite (xᵀMx ≥ |x|²), hence a P-matrix."""
+    a = rng.normal(size=(n, n))
+    skew = rng.normal(size=(n, n))
+    return a @ a.T + np.eye(n) + (skew - skew.T)
+
+
+def test_p_matrix_problems_match_the_enumeration_to_round_off():
+    """A P-matrix LCP has one solution for every q. Lemke's must be that one to 1e-12 of its
+    size: the data are O(1) and M is well conditioned (eigenvalues of the symmetric part ≥ 1),
+    so round-off is ~1e-15; the regularised fallbacks (M + 1e-10·s·I) would be off by ~1e-10."""
+    rng = np.random.default_rng(11)
+    for trial in range(400):
+        n = int(rng.integers(1, 8))
+        m = p_matrix(rng, n)
+        q = rng.normal(size=n) * 2.0
+        (expected,) = enumerate_solutions(m, q)
+        z = lemke(m, q)
+        assert z == pytest.approx(expected, abs=1e-12 * max(1.0, np.abs(expected).max())), (trial, n)
+
+
+def test_the_plain_pivoting_solves_p_matrix_problems_without_fallback(monkeypatch):
+    """The regularisations are a fallback: on a P-matrix (no degeneracy in exact arithmetic) the
+    first, unregularised attempt must already succeed."""
+    monkeypatch.setattr(lcp, "_REGULARISATIONS", (0.0,))
+    rng = np.random.default_rng(12)
+    for _ in range(200):
+        n = int(rng.integers(1, 8))
+        m = p_matrix(rng, n)
+        q = rng.normal(size=n)
+        (expected,) = enumerate_solutions(m, q)
+        assert lemke(m, q) == pytest.approx(expected, abs=1e-12 * max(1.0, np.abs(expected).max()))
+
+
+def _stack_lcps():
+    """The contact LCPs of short Moreau–Jean runs: a block at rest on two corners (two parallel
+    tangent rows, a statically indeterminate normal pair), a block sliding, a statue rocking on
+    a pedestal, and a block whose face never slips (μ = 10⁴ in the LCP)."""
+    from rocking.contact.friction import Friction
+    from rocking.stack import timestepping as ts
+    from rocking.stack.model import Block, Interface, Stack
+
+    def one(width, height, mass, friction):
+        return Stack(blocks=(Block(width=width, height=height, mass=mass),), interfaces=(Interface(friction=friction),))
+
+    cases = [
+        (one(0.4, 2.0, 100.0, Friction(static=0.5, kinetic=0.4)), lambda t: 0.0, 0.02),
+        (one(1.0, 0.3, 100.0, Friction(static=0.2, kinetic=0.15)), lambda t: 4.0, 0.03),
+        (Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(width=0.3, height=1.2, mass=100.0)),
+               interfaces=(Interface(friction=Friction(static=0.3, kinetic=0.25)),
+                           Interface(friction=Friction(static=0.5, kinetic=0.4)))),
+         lambda t: 5.0 * np.sin(4 * np.pi * t), 0.3),
+        (one(0.4, 2.0, 100.0, None), lambda t: 3.0, 0.3),
+    ]
+    found = []
+    solve = ts.lemke
+
+    def recording(m, q, **kwargs):
+        found.append((m.copy(), q.copy()))
+        return solve(m, q, **kwargs)
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(ts, "lemke", recording)
+        for stack, a_h, t_end in cases:
+            ts.moreau_jean(stack, a_h, t_end=t_end, dt=1e-3)
+    return [(m, q) for m, q in found if q.min() < -1e-10 * max(1.0, np.abs(m).max(), np.abs(q).max())]
+
+
+def test_the_plain_pivoting_solves_the_degenerate_lcps_of_contact(monkeypatch):
+    """The claim of the module's docstring: Harris's ratio test, the largest pivot and the
+    lexicographic tie-break keep the pivoting sound on the contact LCPs, which are degenerate.
+    Without the regularised fallbacks every one of them must still be solved, to round-off
+    (measured worst: 2e-15 of the data's size; 1e-12 allowed)."""
+    problems = _stack_lcps()
+    assert len(problems) > 200
+    monkeypatch.setattr(lcp, "_REGULARISATIONS", (0.0,))
+    for m, q in problems:
+        z = lemke(m, q)
+        w = m @ z + q
+        scale = max(1.0, np.abs(m).max(), np.abs(q).max())
+        assert z.min() >= 0.0
+        assert w.min() >= -1e-12 * scale
+        assert np.abs(np.minimum(w, z)).max() <= 1e-12 * scale
+
+
+def test_a_block_on_two_corners_gets_a_valid_split_of_its_weight():
+    """The simplest degenerate contact LCP, by hand: two equal normal columns (a block on both
+    corners, no friction) that must carry a total impulse of 1. Any split is a solution; the
+    sum must be exact."""
+    m = np.ones((2, 2))
+    for q in ([-1.0, -1.0], [-3.0, -3.0]):
+        z = lemke(m, np.array(q))
+        assert z.min() >= 0.0 and z.sum() == pytest.approx(-q[0], rel=1e-14)
+
+
+def test_trivial_and_bad_problems():
+    assert lemke(np.zeros((0, 0)), np.zeros(0)).shape == (0,)
+    assert lemke(np.array([[1.0, 0.0], [0.0, 1.0]]), np.array([0.0, 2.0])).tolist() == [0.0, 0.0]
+    # q slightly negative within round-off of its size: z = 0
+    assert lemke(np.eye(2), np.array([-1e-12, 5.0])).tolist() == [0.0, 0.0]
+    assert lemke(np.eye(2), np.array([-1e-8, 5.0])) == pytest.approx([1e-8, 0.0], abs=1e-20)
+    with pytest.raises(ValueError, match=r"lemke: M must be \(2, 2\) for q of length 2, got \(2, 3\)"):
+        lemke(np.ones((2, 3)), np.ones(2))
+    with pytest.raises(LCPError, match="must be finite"):
+        lemke(np.array([[np.nan]]), np.array([-1.0]))
+    with pytest.raises(LCPError, match="must be finite"):
+        lemke(np.array([[1.0]]), np.array([-np.inf]))
+
+
+def test_failures_name_every_attempt():
+    """No solution (w = −z − 1 ≥ 0 is impossible): the plain attempt and the three regularised
+    ones are each reported; an exhausted pivot budget is named as such."""
+    with pytest.raises(LCPError) as info:
+        lemke(np.array([[-1.0]]), np.array([-1.0]))
+    message = str(info.value)
+    assert message.startswith("lemke: no solution found (n = 1); ε = 0: ray termination; ε = 1e-10: ")
+    assert message.count("ε = ") == 4 and "ε = 1e-08" in message and "ε = 1e-06" in message
+    with pytest.raises(LCPError, match=r"ε = 0: no solution within 0 pivots"):
+        lemke(np.array([[2.0, 1.0], [1.0, 2.0]]), np.array([-5.0, -6.0]), max_pivots=0)
