@@ -423,6 +423,28 @@ def test_two_blocks_that_cannot_slip_on_each_other_slide_as_one():
     assert np.abs(res.pose[:, 1, 0] - res.pose[:, 0, 0]).max() < 1e-12
 
 
+def test_a_pedestal_stops_in_one_step_while_its_box_slides_the_other_way():
+    """Both 100 kg, μ = 0.5 on both faces, no floor motion. The pedestal drifts at +2μgΔt, the
+    box slides back at −3 m/s, so in the first step the box's friction gives it +μ m g Δt and
+    the pedestal −μ m g Δt. To stop, the pedestal needs a floor impulse of
+    −(m v₀ − μ m g Δt) = −μ m g Δt, within the floor's μ (2m) g Δt: it sticks at the end of the
+    first step, and the box is at −3 + μ g Δt. By hand, so round-off only.
+
+    The one case here where friction pushes one contact in +x (the box's) and the coupled one in
+    −x (the floor's) while that one sticks: the LCP's β⁻ rows must couple to β⁺ with −Wᵀ (with
+    +Wᵀ the pedestal overshoots to −1.7e-3 m/s)."""
+    mu = 0.5
+    stack = Stack(blocks=(Block(width=1.0, height=0.3, mass=100.0), Block(width=0.5, height=0.2, mass=100.0)),
+                  interfaces=(Interface(friction=Friction(static=mu)), Interface(friction=Friction(static=mu))))
+    dt = 1e-3
+    velocity0 = np.array([[2 * mu * G * dt, 0.0, 0.0], [-3.0, 0.0, 0.0]])
+    res = moreau_jean(stack, zero, t_end=dt, dt=dt, velocity0=velocity0)
+    assert res.t[-1] == pytest.approx(dt)
+    assert np.abs(res.velocity[-1, 0]).max() < 1e-12
+    assert res.velocity[-1, 1, 0] == pytest.approx(-3.0 + mu * G * dt, abs=1e-12)
+    assert np.abs(res.velocity[-1, 1, 1:]).max() < 1e-12
+
+
 def test_top_block_slides_off():
     """A squat top block (cannot rock) on a pedestal that never slips, with μ = 0.1 between them,
     under a_h = 0.6 g: the top block slides off the pedestal towards −x; only block 2 is flagged.
