@@ -102,11 +102,9 @@ MODULES: dict[str, list[str]] = {
     # The stack engine (issue 11): its own tests first, then the cross-checks against the
     # two-body solver and the Moreau–Jean solver, then the studies that read its summaries.
     "stack/kinematics.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
-    # lcp.py is plain Python read by the Moreau–Jean solver only: its oracle first, then that
-    # solver's tests and the two engine tests that run it
-    "stack/lcp.py": ["test_lcp.py", "test_stack_timestepping.py", "test_stack_crosscheck.py",
-                     "test_stack_engine.py::test_a_corner_that_rebounds_by_less_than_rounding_lands_instead_of_sinking",
-                     "test_stack_engine.py::test_a_block_slides_past_the_edge_tips_over_it_and_falls_off"],
+    # lcp.py is plain Python read by the Moreau–Jean solver only: its oracle, then that solver's
+    # own tests (a survivor is then tried on test_stack_crosscheck.py, 5 min a run here)
+    "stack/lcp.py": ["test_lcp.py", "test_stack_timestepping.py"],
     "stack/modes.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
     "stack/engine.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
     "stack/model.py": ["test_stack_config.py", "test_stack_engine.py", "test_input_errors.py"],

@@ -119,6 +119,21 @@ def test_a_block_on_a_frictionless_face_keeps_its_place_in_space():
     assert np.abs(res.pose[:, 1, 1:] - rest_pose(stack)[1, 1:]).max() < 1e-12  # flat, on its face
 
 
+def test_the_floor_acceleration_is_read_at_the_steps_theta_point():
+    """The same frictionless box under a ramp a_h = c·t. Its velocity on the pedestal changes by
+    −c·t_{n+θ}·Δt per step, with t_{n+θ} = t_n + θΔt: for θ = ½ (the midpoint rule, exact for a
+    linear a_h) v(t_n) = −c t_n²/2, and for θ = 1 v(t_n) = −c Δt² n(n+1)/2. Sums of n terms of
+    size ≤ c·t·Δt: round-off only. Read at t_n − θΔt, both would be off by c·t·θΔt (2e-4 m/s)."""
+    stack = Stack(blocks=(Block(width=1.0, height=0.3, mass=500.0), Block(width=0.6, height=0.1, mass=20.0)),
+                  interfaces=(Interface(), Interface(friction=Friction(static=0.0))))
+    c, dt = 4.0, 1e-3
+    mid = moreau_jean(stack, lambda t: c * t, t_end=0.1, dt=dt)
+    assert np.abs(mid.velocity[:, 1, 0] + 0.5 * c * mid.t**2).max() < 1e-14
+    end = moreau_jean(stack, lambda t: c * t, t_end=0.1, dt=dt, theta=1.0)
+    n = np.rint(end.t / dt)
+    assert np.abs(end.velocity[:, 1, 0] + 0.5 * c * dt**2 * n * (n + 1)).max() < 1e-14
+
+
 def test_static_then_kinetic_friction():
     """μs = 0.4, μk = 0.3, constant a_h = A. Between μk g and μs g the block never starts (static
     friction holds it: round-off only). Above μs g it slides at −(A − μk g): the first step uses μs
@@ -369,6 +384,25 @@ def test_relative_pose_of_a_moved_and_turned_lower_block():
     assert rel[0, 0] == pytest.approx(first, abs=1e-15)
     assert rel[0, 1] == pytest.approx([0.12, 0.9, 0.07], abs=1e-14)
     assert rel[0, 2] == pytest.approx([-0.05, 0.6, -0.3], abs=1e-14)
+
+
+@pytest.mark.parametrize("beyond, falls", [(1e-3, True), (-1e-3, False)])
+def test_slid_off_is_judged_in_the_turned_frame_of_the_block_below(beyond, falls):
+    """A 1.0 × 0.3 m plinth in the air, turned by 0.3 rad, with a 0.2 m cube lying on its top face
+    (turned with it) whose centre is 0.6 m + ``beyond`` from the plinth's centre along that face:
+    the two faces overlap by −``beyond``. Both fall freely for one step of 1e-4 s, which moves
+    nothing relative to the other, so the run stops with the cube slid off exactly when the
+    overlap is gone. The placement uses the module's convention (see the test above). Read in
+    the floor frame, or with the wrong coordinate, the overlap would be off by centimetres."""
+    plinth = [0.0, 2.0, 0.3]
+    xi, eta = 0.5 + 0.1 + beyond, 0.15 + 0.1
+    c, s = math.cos(plinth[2]), math.sin(plinth[2])
+    cube = [plinth[0] + xi * c + eta * s, plinth[1] - xi * s + eta * c, plinth[2]]
+    stack = Stack(blocks=(Block(width=1.0, height=0.3, mass=100.0), Block(width=0.2, height=0.2, mass=10.0)),
+                  interfaces=(Interface(), Interface(friction=Friction(static=0.5))))
+    res = moreau_jean(stack, zero, t_end=1e-3, dt=1e-4, pose0=np.array([plinth, cube]))
+    assert res.overturned == (False, falls)
+    assert res.t[-1] == pytest.approx(1e-4 if falls else 1e-3)
 
 
 def test_relative_pose_at_rest():
