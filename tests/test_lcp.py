@@ -157,3 +157,15 @@ def test_failures_name_every_attempt():
     assert message.count("ε = ") == 4 and "ε = 1e-08" in message and "ε = 1e-06" in message
     with pytest.raises(LCPError, match=r"ε = 0: no solution within 0 pivots"):
         lemke(np.array([[2.0, 1.0], [1.0, 2.0]]), np.array([-5.0, -6.0]), max_pivots=0)
+
+
+def test_a_problem_the_plain_pivoting_cannot_solve_is_solved_by_a_regularised_attempt():
+    """M below is not copositive, and the plain pivoting ray-terminates on it (checked here),
+    although z = (0, 0, 2) solves it: w = Mz + q = (2 − 2, 0, 0) = 0. M + εI (ε = 1e-10 of the
+    data's size) leads the pivoting to that solution; the answer is checked on the original
+    problem. (M − εI, a perturbation of the wrong sign, ray-terminates at every ε.)"""
+    m = np.array([[-1.0, 0.0, 1.0], [-1.0, 1.0, 0.0], [-1.0, -1.0, 0.0]])
+    q = np.array([-2.0, 0.0, 0.0])
+    with pytest.raises(LCPError, match="ray termination"):
+        lcp._pivoting(m, q, 200, 1e-10, 1e-9)
+    assert lemke(m, q) == pytest.approx([0.0, 0.0, 2.0], abs=1e-8)

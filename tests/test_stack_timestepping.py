@@ -386,18 +386,23 @@ def test_relative_pose_of_a_moved_and_turned_lower_block():
     assert rel[0, 2] == pytest.approx([-0.05, 0.6, -0.3], abs=1e-14)
 
 
-@pytest.mark.parametrize("beyond, falls", [(1e-3, True), (-1e-3, False)])
-def test_slid_off_is_judged_in_the_turned_frame_of_the_block_below(beyond, falls):
-    """A 1.0 × 0.3 m plinth in the air, turned by 0.3 rad, with a 0.2 m cube lying on its top face
-    (turned with it) whose centre is 0.6 m + ``beyond`` from the plinth's centre along that face:
-    the two faces overlap by −``beyond``. Both fall freely for one step of 1e-4 s, which moves
-    nothing relative to the other, so the run stops with the cube slid off exactly when the
-    overlap is gone. The placement uses the module's convention (see the test above). Read in
-    the floor frame, or with the wrong coordinate, the overlap would be off by centimetres."""
+@pytest.mark.parametrize(
+    "beyond, turn, falls",
+    [(1e-3, 0.0, True), (-1e-3, 0.0, False), (-0.3, 0.5 * math.pi + 1e-3, True), (-0.3, 0.5 * math.pi - 1e-3, False)],
+)
+def test_falling_off_is_judged_relative_to_the_turned_block_below(beyond, turn, falls):
+    """A 1.0 × 0.3 m plinth in the air, turned by 0.3 rad, with a 0.2 m cube on its top face whose
+    centre is 0.6 m + ``beyond`` from the plinth's centre along that face (the two faces overlap
+    by −``beyond``), turned by ``turn`` more than the plinth (a square turned by π/2 has the same
+    footprint). Both fall freely for one step of 1e-4 s, which moves nothing relative to the
+    other, so the run stops with the cube fallen exactly when the overlap is gone or the turn is
+    past π/2. The placement uses the module's convention (see the test above). Judged in the
+    floor frame, with the wrong coordinate or against the sum of the two turns, the answer
+    would change."""
     plinth = [0.0, 2.0, 0.3]
     xi, eta = 0.5 + 0.1 + beyond, 0.15 + 0.1
     c, s = math.cos(plinth[2]), math.sin(plinth[2])
-    cube = [plinth[0] + xi * c + eta * s, plinth[1] - xi * s + eta * c, plinth[2]]
+    cube = [plinth[0] + xi * c + eta * s, plinth[1] - xi * s + eta * c, plinth[2] + turn]
     stack = Stack(blocks=(Block(width=1.0, height=0.3, mass=100.0), Block(width=0.2, height=0.2, mass=10.0)),
                   interfaces=(Interface(), Interface(friction=Friction(static=0.5))))
     res = moreau_jean(stack, zero, t_end=1e-3, dt=1e-4, pose0=np.array([plinth, cube]))
@@ -551,6 +556,8 @@ def test_a_failed_contact_lcp_says_at_which_step(monkeypatch):
         ({"t_end": "1"}, "t_end"),
         ({"gravity": math.nan}, "gravity"),
         ({"gravity": "9.81"}, "gravity"),
+        ({"theta": True}, r"theta must lie in \[0.5, 1\], got True"),
+        ({"theta": "0.5"}, r"theta must lie in \[0.5, 1\], got '0.5'"),
     ],
 )
 def test_bad_arguments(kwargs, match):
