@@ -169,3 +169,31 @@ def test_a_problem_the_plain_pivoting_cannot_solve_is_solved_by_a_regularised_at
     with pytest.raises(LCPError, match="ray termination"):
         lcp._pivoting(m, q, 200, 1e-10, 1e-9)
     assert lemke(m, q) == pytest.approx([0.0, 0.0, 2.0], abs=1e-8)
+
+
+def test_the_regularisation_is_relative_to_the_size_of_the_data():
+    """The problem above scaled by 10⁶ (z is unchanged): ε·s·I must be 1e-10 of the entries, not
+    of 1; an absolute 1e-10 would be lost in their round-off and every attempt would
+    ray-terminate."""
+    m = 1e6 * np.array([[-1.0, 0.0, 1.0], [-1.0, 1.0, 0.0], [-1.0, -1.0, 0.0]])
+    q = 1e6 * np.array([-2.0, 0.0, 0.0])
+    assert lemke(m, q) == pytest.approx([0.0, 0.0, 2.0], abs=1e-8)
+
+
+@pytest.mark.parametrize("tol", [1e-10, 0.0])
+def test_a_tie_in_the_ratio_test_is_broken_lexicographically(tol):
+    """M = [[3, 1, 1], [1, 1, 1], [1, 1, 3]] is positive definite (leading minors 3, 2, 4), so with
+    q = (−2, −2, −2) the solution is unique: by symmetry z₁ = z₃ = a, z₂ = b with 4a + b = 2 and
+    2a + b = 2, so z = (0, 2, 0), w = 0: degenerate. The ratio test meets rows that tie exactly,
+    which the lexicographic rule must order, also with no tolerance at all (tol = 0)."""
+    m = np.array([[3.0, 1.0, 1.0], [1.0, 1.0, 1.0], [1.0, 1.0, 3.0]])
+    assert lemke(m, np.array([-2.0, -2.0, -2.0]), tol=tol) == pytest.approx([0.0, 2.0, 0.0], abs=1e-14)
+
+
+def test_the_options_are_keyword_only_and_q_at_the_tolerance_is_zero():
+    m = np.eye(2)
+    with pytest.raises(TypeError):
+        lemke(m, np.array([-1.0, 0.5]), 10)  # max_pivots only by name
+    assert lemke(M=m, q=np.array([-1.0, 0.5])).tolist() == [1.0, 0.0]
+    # |q| ≤ 1 and |M| = 1: scale 1, and q.min() = −tol·scale exactly counts as non-negative
+    assert lemke(m, np.array([-1e-10, 0.5])).tolist() == [0.0, 0.0]

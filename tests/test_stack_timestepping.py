@@ -410,6 +410,26 @@ def test_falling_off_is_judged_relative_to_the_turned_block_below(beyond, turn, 
     assert res.t[-1] == pytest.approx(1e-4 if falls else 1e-3)
 
 
+def test_at_coincident_corners_the_contact_lies_on_the_lower_face():
+    """Two blocks of one width (0.4 m); the upper one is turned by 0.05 rad about its right corner,
+    placed on the lower one's right corner. Where two corners coincide the contact is the upper
+    block's corner on the lower block's face (the module's rule for aligned edges, as in the
+    engine), so its normal is the lower face's, vertical. With a frictionless face the first
+    step's impulse on the upper block is then vertical: Ẋ stays 0 to round-off while Ẏ and Θ̇
+    change. (Read as the lower corner on the upper face, the normal would lean by 0.05 rad:
+    Ẋ = 3e-4 m/s after the step.)"""
+    width, height, th = 0.4, 0.8, 0.05
+    stack = Stack(blocks=(Block(width=width, height=0.4, mass=100.0), Block(width=width, height=height, mass=50.0)),
+                  interfaces=(Interface(), Interface(friction=Friction(static=0.0))))
+    c, s = math.cos(th), math.sin(th)
+    corner = (0.5 * width, -0.5 * height)  # the upper block's right bottom corner, body frame
+    upper = [0.5 * width - (corner[0] * c + corner[1] * s), 0.4 - (-corner[0] * s + corner[1] * c), th]
+    res = moreau_jean(stack, zero, t_end=1e-3, dt=1e-3, pose0=np.array([[0.0, 0.2, 0.0], upper]))
+    x_dot, y_dot, th_dot = res.velocity[-1, 1]
+    assert abs(x_dot) < 1e-15
+    assert y_dot < -1e-3 and th_dot < -1e-2  # the corner carried it: it turns back towards flat
+
+
 def test_relative_pose_at_rest():
     """Block 2 of the statue on pedestal sits 0.1 m right of the pedestal's centre, (0.5 + 1.2)/2
     above it, unrotated; block 1 is given in the floor frame."""
