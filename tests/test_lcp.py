@@ -197,3 +197,8 @@ def test_the_options_are_keyword_only_and_q_at_the_tolerance_is_zero():
     assert lemke(M=m, q=np.array([-1.0, 0.5])).tolist() == [1.0, 0.0]
     # |q| ≤ 1 and |M| = 1: scale 1, and q.min() = −tol·scale exactly counts as non-negative
     assert lemke(m, np.array([-1e-10, 0.5])).tolist() == [0.0, 0.0]
+
+
+def test_q_within_round_off_of_large_data_is_zero():
+    """With |M| = 10⁶, q = −10⁻⁵ is round-off (below 1e-10 of the data's size): z = 0, no pivot."""
+    assert lemke(1e6 * np.eye(2), np.array([-1e-5, 5e5])).tolist() == [0.0, 0.0]

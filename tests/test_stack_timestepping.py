@@ -482,7 +482,8 @@ def test_two_blocks_that_cannot_slip_on_each_other_slide_as_one():
     assert np.abs(res.pose[:, 1, 0] - res.pose[:, 0, 0]).max() < 1e-12
 
 
-def test_a_pedestal_stops_in_one_step_while_its_box_slides_the_other_way():
+@pytest.mark.parametrize("sign", [1.0, -1.0])
+def test_a_pedestal_stops_in_one_step_while_its_box_slides_the_other_way(sign):
     """Both 100 kg, μ = 0.5 on both faces, no floor motion. The pedestal drifts at +2μgΔt, the
     box slides back at −3 m/s, so in the first step the box's friction gives it +μ m g Δt and
     the pedestal −μ m g Δt. To stop, the pedestal needs a floor impulse of
@@ -491,16 +492,17 @@ def test_a_pedestal_stops_in_one_step_while_its_box_slides_the_other_way():
 
     The one case here where friction pushes one contact in +x (the box's) and the coupled one in
     −x (the floor's) while that one sticks: the LCP's β⁻ rows must couple to β⁺ with −Wᵀ (with
-    +Wᵀ the pedestal overshoots to −1.7e-3 m/s)."""
+    +Wᵀ the pedestal overshoots to −1.7e-3 m/s). Mirrored (sign −1), the same holds for the β⁺
+    rows' coupling to β⁻."""
     mu = 0.5
     stack = Stack(blocks=(Block(width=1.0, height=0.3, mass=100.0), Block(width=0.5, height=0.2, mass=100.0)),
                   interfaces=(Interface(friction=Friction(static=mu)), Interface(friction=Friction(static=mu))))
     dt = 1e-3
-    velocity0 = np.array([[2 * mu * G * dt, 0.0, 0.0], [-3.0, 0.0, 0.0]])
+    velocity0 = sign * np.array([[2 * mu * G * dt, 0.0, 0.0], [-3.0, 0.0, 0.0]])
     res = moreau_jean(stack, zero, t_end=dt, dt=dt, velocity0=velocity0)
     assert res.t[-1] == pytest.approx(dt)
     assert np.abs(res.velocity[-1, 0]).max() < 1e-12
-    assert res.velocity[-1, 1, 0] == pytest.approx(-3.0 + mu * G * dt, abs=1e-12)
+    assert res.velocity[-1, 1, 0] == pytest.approx(sign * (-3.0 + mu * G * dt), abs=1e-12)
     assert np.abs(res.velocity[-1, 1, 1:]).max() < 1e-12
 
 
@@ -544,6 +546,7 @@ def test_a_run_shorter_than_a_step_is_one_short_step():
     assert res.t.tolist() == [0.0, 4e-4]
     assert res.velocity[-1, 0, 1] == pytest.approx(G * 4e-4, rel=1e-12)  # free flight for 0.4 ms
     assert len(moreau_jean(single(), zero, t_end=1e-3).t) == 11  # the default step: 1e-4 s
+    assert moreau_jean(single(), zero, dt=0.5).t.tolist() == [0.0, 0.5, 1.0, 1.5, 2.0]  # the default t_end: 2 s
     # save_every keeps every n-th step, and the last one whatever n
     kept = moreau_jean(single(), zero, t_end=1e-2, dt=1e-3, save_every=3)
     assert kept.t == pytest.approx([0.0, 3e-3, 6e-3, 9e-3, 1e-2], abs=1e-15)
@@ -583,6 +586,12 @@ def test_a_failed_contact_lcp_says_at_which_step(monkeypatch):
 def test_bad_arguments(kwargs, match):
     with pytest.raises(ValueError, match=match):
         moreau_jean(single(), zero, **kwargs)
+
+
+@pytest.mark.parametrize("a_h, a_v", [(3.0, None), (zero, 3.0), ("zero", zero)])
+def test_floor_motions_must_be_callables(a_h, a_v):
+    with pytest.raises(ValueError, match=r"a_h \(and a_v if given\) must be callables"):
+        moreau_jean(single(), a_h, a_v)
 
 
 # the LCP solver ------------------------------------------------------------------------------
