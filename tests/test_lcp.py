@@ -202,3 +202,17 @@ def test_the_options_are_keyword_only_and_q_at_the_tolerance_is_zero():
 def test_q_within_round_off_of_large_data_is_zero():
     """With |M| = 10⁶, q = −10⁻⁵ is round-off (below 1e-10 of the data's size): z = 0, no pivot."""
     assert lemke(1e6 * np.eye(2), np.array([-1e-5, 5e5])).tolist() == [0.0, 0.0]
+
+
+@pytest.mark.parametrize("size", [1.0, 1e3, 1e6])
+def test_a_problem_without_solution_is_refused_at_any_scale(size):
+    """M is positive semidefinite and singular; with y = (0, 1, 1, 1), yᵀM = 0 and yᵀq = −2, so
+    yᵀw = −2 for every z: no z gives w ≥ 0 (Farkas), and there is no solution. At 10⁶ the
+    pivoting returned z ≈ 3e15 with w = −2e6, which the round-off allowance 1e-12·max z, left
+    uncapped, accepted: a wrong answer where an LCPError is due."""
+    m = np.array([[3.0, 1.0, -1.0, 0.0], [1.0, 2.0, -1.0, -1.0], [-1.0, -1.0, 3.0, -2.0], [0.0, -1.0, -2.0, 3.0]])
+    q = np.array([-2.0, 0.0, 0.0, -2.0])
+    y = np.array([0.0, 1.0, 1.0, 1.0])
+    assert (y @ m).tolist() == [0.0, 0.0, 0.0, 0.0] and y @ q == -2.0  # the certificate, exactly
+    with pytest.raises(LCPError, match="no solution found"):
+        lemke(size * m, size * q)

@@ -579,6 +579,8 @@ def test_a_failed_contact_lcp_says_at_which_step(monkeypatch):
         ({"t_end": "1"}, "t_end"),
         ({"gravity": math.nan}, "gravity"),
         ({"gravity": "9.81"}, "gravity"),
+        ({"save_every": True}, "save_every"),
+        ({"save_every": 2.0}, "save_every"),
         ({"theta": True}, r"theta must lie in \[0.5, 1\], got True"),
         ({"theta": "0.5"}, r"theta must lie in \[0.5, 1\], got '0.5'"),
     ],

@@ -63,7 +63,7 @@ def lemke(M, q, *, max_pivots: int | None = None, tol: float = 1e-10, slack: flo
         Harris's tolerance: a pivot may leave a basic value at −slack·max(1, |q|) (reset to 0).
     check : float
         Accepted residual of the answer: min(w) ≥ −r and |min(w_i, z_i)| ≤ r for every i,
-        with r = s·(check + 1e-12·max z).
+        with r = s·(check + min(1e-12·max z, check)).
 
     Returns
     -------
@@ -96,8 +96,10 @@ def lemke(M, q, *, max_pivots: int | None = None, tol: float = 1e-10, slack: flo
             failures.append(f"ε = {eps:g}: {exc}")
             continue
         residual = _residual(M, q, z)
-        # round-off in w grows with |z|, hence the second term (far below check·s for |z| ≲ 10⁵)
-        if residual <= scale * (check + 1e-12 * float(z.max(initial=0.0))):
+        # Round-off in w grows with |z|, hence the second term (far below check·s for |z| ≲ 10⁵).
+        # It is capped at check·s: a blown-up z (10¹⁵ from a tableau gone singular) would
+        # otherwise excuse any residual, and a problem without solution would return garbage.
+        if residual <= scale * (check + min(1e-12 * float(z.max(initial=0.0)), check)):
             return z
         failures.append(f"ε = {eps:g}: inaccurate answer (residual {residual:.3g})")
     raise LCPError("lemke: no solution found (n = %d); %s" % (n, "; ".join(failures)))
