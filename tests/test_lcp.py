@@ -59,6 +59,17 @@ def test_p_matrix_problems_match_the_enumeration_to_round_off():
         assert z == pytest.approx(expected, abs=1e-12 * max(1.0, np.abs(expected).max())), (trial, n)
 
 
+def test_the_exact_ratio_test_without_slack_solves_p_matrix_problems():
+    """slack = 0 turns Harris's test into the textbook one (the rows at the exact minimum ratio)."""
+    rng = np.random.default_rng(13)
+    for _ in range(100):
+        n = int(rng.integers(1, 8))
+        m = p_matrix(rng, n)
+        q = rng.normal(size=n)
+        (expected,) = enumerate_solutions(m, q)
+        assert lemke(m, q, slack=0.0) == pytest.approx(expected, abs=1e-12 * max(1.0, np.abs(expected).max()))
+
+
 def test_the_plain_pivoting_solves_p_matrix_problems_without_fallback(monkeypatch):
     """The regularisations are a fallback: on a P-matrix (no degeneracy in exact arithmetic) the
     first, unregularised attempt must already succeed."""
@@ -195,8 +206,10 @@ def test_the_options_are_keyword_only_and_q_at_the_tolerance_is_zero():
     with pytest.raises(TypeError):
         lemke(m, np.array([-1.0, 0.5]), 10)  # max_pivots only by name
     assert lemke(M=m, q=np.array([-1.0, 0.5])).tolist() == [1.0, 0.0]
-    # |q| ≤ 1 and |M| = 1: scale 1, and q.min() = −tol·scale exactly counts as non-negative
+    # |q| ≤ 1 and |M| = 1: scale 1, and q.min() = −tol·scale exactly counts as non-negative;
+    # beyond it, the pivoting runs
     assert lemke(m, np.array([-1e-10, 0.5])).tolist() == [0.0, 0.0]
+    assert lemke(m, np.array([-1.5e-10, 0.5])).tolist() == [1.5e-10, 0.0]
 
 
 def test_q_within_round_off_of_large_data_is_zero():
