@@ -229,3 +229,34 @@ def test_a_problem_without_solution_is_refused_at_any_scale(size):
     assert (y @ m).tolist() == [0.0, 0.0, 0.0, 0.0] and y @ q == -2.0  # the certificate, exactly
     with pytest.raises(LCPError, match="no solution found"):
         lemke(size * m, size * q)
+
+
+# A contact LCP with the Moreau–Jean structure (normal rows; β⁺, β⁻ and λ rows; λ rows of a
+# never-slipping contact scaled by 1/μ = 1e-4), built by the time stepping's assembly from
+# random integer contact rows with a duplicated contact. Found by a search of 20 000 such
+# problems: without the lexicographic tie-break Lemke's method cycles on it.
+CYCLING_M = np.array([
+    [2.0, 0.0, 2.0, -1.5, 0.0, 1.5, 0.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0, 0.5, 1.0, -0.5, -1.0, 0.0, 0.0],
+    [2.0, 0.0, 2.0, -1.5, 0.0, 1.5, 0.0, 0.0, 0.0],
+    [-1.5, 0.5, -1.5, 1.5, 0.5, -1.5, -0.5, 1.0, 0.0],
+    [0.0, 1.0, 0.0, 0.5, 1.0, -0.5, -1.0, 0.0, 1.0],
+    [1.5, -0.5, 1.5, -1.5, -0.5, 1.5, 0.5, 1.0, 0.0],
+    [0.0, -1.0, 0.0, -0.5, -1.0, 0.5, 1.0, 0.0, 1.0],
+    [0.0, 1.0, 0.0, -1e-4, 0.0, -1e-4, 0.0, 0.0, 0.0],
+    [0.0, 0.0, 1.0, 0.0, -1e-4, 0.0, -1e-4, 0.0, 0.0],
+])
+CYCLING_Q = np.array([-2.0, 3.0, -2.0, 3.0, 3.0, -3.0, -3.0, 0.0, 0.0])
+
+
+@pytest.mark.parametrize("fallbacks", [True, False])
+def test_the_tie_break_keeps_the_pivoting_from_cycling(monkeypatch, fallbacks):
+    """On the problem above the plain pivoting must end, with an exact answer (w ≥ 0, z ≥ 0,
+    min(w, z) = 0 to 1e-12 of the data). Without the tie-break it runs out of pivots (cycling),
+    and the regularised fallback then returns an answer off by 9e-8: inside `check`, outside
+    round-off."""
+    if not fallbacks:
+        monkeypatch.setattr(lcp, "_REGULARISATIONS", (0.0,))
+    z = lemke(CYCLING_M, CYCLING_Q)
+    w = CYCLING_M @ z + CYCLING_Q
+    assert z.min() >= 0.0 and w.min() >= -1e-12 and np.abs(np.minimum(w, z)).max() <= 1e-12
