@@ -260,3 +260,23 @@ def test_the_tie_break_keeps_the_pivoting_from_cycling(monkeypatch, fallbacks):
     z = lemke(CYCLING_M, CYCLING_Q)
     w = CYCLING_M @ z + CYCLING_Q
     assert z.min() >= 0.0 and w.min() >= -1e-12 and np.abs(np.minimum(w, z)).max() <= 1e-12
+
+
+def test_the_largest_pivot_is_taken_among_rows_that_tie():
+    """Entries of 1e-5 and 1e-4 beside entries of order 1. By hand, z = (0, 100001, 0, 200001, 0)
+    solves it: w₁ = 2·100001 − 200001 − 1 = 0, w₃ = 1e-5·(200001 − 100001) − 1 = 0, and
+    w₀ = 1, w₂ = 200001, w₄ = 29.0002 are positive. Round-off in w is at most n·ε·|M||z| ≈ 5e-10,
+    so 1e-9 is allowed. Pivoting on a tiny entry of a tied row instead of the largest one leaves
+    w₁ = 3.4e-6 at z₁ = 100001 (and `check` lets that through)."""
+    m = np.array([
+        [0.0, 0.0, 0.0, 0.0, 0.0],
+        [0.0, 2.0, 2.0, -1.0, 1.0],
+        [0.0, 2.0, 4.0, 0.0, 4.0],
+        [0.0, -1e-5, 0.0, 1e-5, 1e-5],
+        [0.0, 1e-4, 4e-4, 1e-4, 5e-4],
+    ])
+    q = np.array([1.0, -1.0, -1.0, -1.0, -1.0])
+    z = lemke(m, q)
+    w = m @ z + q
+    assert z == pytest.approx([0.0, 100001.0, 0.0, 200001.0, 0.0], rel=1e-9)
+    assert z.min() >= 0.0 and w.min() >= -1e-9 and np.abs(np.minimum(w, z)).max() <= 1e-9
