@@ -103,7 +103,7 @@ MODULES: dict[str, list[str]] = {
     # two-body solver and the Moreau–Jean solver, then the studies that read its summaries.
     "stack/kinematics.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
     # lcp.py is plain Python read by the Moreau–Jean solver only: its oracle, then that solver's
-    # own tests (a survivor is then tried on test_stack_crosscheck.py, 5 min a run here)
+    # own tests (the cross-check, 5 min a run, is left to `try`)
     "stack/lcp.py": ["test_lcp.py", "test_stack_timestepping.py"],
     "stack/modes.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
     "stack/engine.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
