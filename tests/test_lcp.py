@@ -45,42 +45,41 @@ def p_matrix(rng, n):
     return a @ a.T + np.eye(n) + (skew - skew.T)
 
 
+def p_matrix_problems(seed, count, q_size=1.0):
+    """``count`` random P-matrix problems (n = 1…7) with their one solution by enumeration."""
+    rng = np.random.default_rng(seed)
+    for _ in range(count):
+        n = int(rng.integers(1, 8))
+        m = p_matrix(rng, n)
+        q = rng.normal(size=n) * q_size
+        (expected,) = enumerate_solutions(m, q)
+        yield m, q, expected
+
+
+def assert_round_off(z, expected):
+    assert z == pytest.approx(expected, abs=1e-12 * max(1.0, np.abs(expected).max()))
+
+
 def test_p_matrix_problems_match_the_enumeration_to_round_off():
     """A P-matrix LCP has one solution for every q. Lemke's must be that one to 1e-12 of its
     size: the data are O(1) and M is well conditioned (eigenvalues of the symmetric part ≥ 1),
     so round-off is ~1e-15; the regularised fallbacks (M + 1e-10·s·I) would be off by ~1e-10."""
-    rng = np.random.default_rng(11)
-    for trial in range(400):
-        n = int(rng.integers(1, 8))
-        m = p_matrix(rng, n)
-        q = rng.normal(size=n) * 2.0
-        (expected,) = enumerate_solutions(m, q)
-        z = lemke(m, q)
-        assert z == pytest.approx(expected, abs=1e-12 * max(1.0, np.abs(expected).max())), (trial, n)
+    for m, q, expected in p_matrix_problems(seed=11, count=400, q_size=2.0):
+        assert_round_off(lemke(m, q), expected)
 
 
 def test_the_exact_ratio_test_without_slack_solves_p_matrix_problems():
     """slack = 0 turns Harris's test into the textbook one (the rows at the exact minimum ratio)."""
-    rng = np.random.default_rng(13)
-    for _ in range(100):
-        n = int(rng.integers(1, 8))
-        m = p_matrix(rng, n)
-        q = rng.normal(size=n)
-        (expected,) = enumerate_solutions(m, q)
-        assert lemke(m, q, slack=0.0) == pytest.approx(expected, abs=1e-12 * max(1.0, np.abs(expected).max()))
+    for m, q, expected in p_matrix_problems(seed=13, count=100):
+        assert_round_off(lemke(m, q, slack=0.0), expected)
 
 
 def test_the_plain_pivoting_solves_p_matrix_problems_without_fallback(monkeypatch):
     """The regularisations are a fallback: on a P-matrix (no degeneracy in exact arithmetic) the
     first, unregularised attempt must already succeed."""
     monkeypatch.setattr(lcp, "_REGULARISATIONS", (0.0,))
-    rng = np.random.default_rng(12)
-    for _ in range(200):
-        n = int(rng.integers(1, 8))
-        m = p_matrix(rng, n)
-        q = rng.normal(size=n)
-        (expected,) = enumerate_solutions(m, q)
-        assert lemke(m, q) == pytest.approx(expected, abs=1e-12 * max(1.0, np.abs(expected).max()))
+    for m, q, expected in p_matrix_problems(seed=12, count=200):
+        assert_round_off(lemke(m, q), expected)
 
 
 def _stack_lcps():
