@@ -34,9 +34,9 @@ import numpy as np
 from numba import njit
 
 # Columns of the parameter table P (one row per block / interface k = 0 … N−1).
-(P_MASS, P_INERTIA, P_HU, P_HL, P_BU, P_BL, P_OFFSET, P_MU_S, P_MU_K, P_CAN_SLIP, P_RESTITUTION, P_FLOOR,
- P_IMPACT_PAPER) = range(13)
-N_P = 13
+(P_MASS, P_INERTIA, P_HU, P_HL, P_BU, P_BL, P_OFFSET, P_MU_S, P_MU_K, P_CAN_SLIP, P_RESTITUTION,
+ P_IMPACT_PAPER) = range(12)
+N_P = 12
 
 END_U, END_L = 0, 1  # an upper corner on the lower face / a lower corner on the upper face
 

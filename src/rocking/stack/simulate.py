@@ -31,7 +31,6 @@ from .kinematics import (
     P_BL,
     P_BU,
     P_CAN_SLIP,
-    P_FLOOR,
     P_HL,
     P_HU,
     P_IMPACT_PAPER,
@@ -72,7 +71,6 @@ def pack(stack: Stack, impact: str = "coulomb") -> tuple[np.ndarray, np.ndarray,
         P[k, P_BU] = 0.5 * block.width
         P[k, P_BL] = 0.5 * lower.width if lower is not None else _FLOOR_HALF_WIDTH
         P[k, P_OFFSET] = block.offset
-        P[k, P_FLOOR] = 1.0 if k == 0 else 0.0
         P[k, P_IMPACT_PAPER] = 1.0 if impact == "paper" else 0.0
         if iface.friction is not None:
             P[k, P_MU_S] = iface.friction.mu_s
