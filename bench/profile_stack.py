@@ -105,7 +105,7 @@ def child(case: str, seconds: float) -> None:
     print(f"runs {runs} {(time.perf_counter() - t0) / runs * 1e3:.2f} {label}", flush=True)
 
 
-_ROW = re.compile(r"^\s*([\d.]+)%\s+(\S.*?)\s+\[([.k])\]\s+(\S+)")
+_ROW = re.compile(r"^\s*([\d.]+)%\s+(\S.*?)\s+\[[.k]\]\s+(\S+)")
 
 
 def parent(case: str, seconds: float, top: int) -> None:
@@ -137,7 +137,7 @@ def parent(case: str, seconds: float, top: int) -> None:
         m = _ROW.match(row)
         if not m:
             continue
-        pct, dso, _, sym = float(m.group(1)), m.group(2), m.group(3), m.group(4)
+        pct, dso, sym = float(m.group(1)), m.group(2), m.group(3)
         if dso.startswith("[JIT]"):
             shares[short_name(sym)] += pct
         elif dso.startswith("libm"):

@@ -50,6 +50,13 @@ def _compare(system, motion, **kw):
 STATUE = dict(width=0.3, height=1.2, mass=100.0)
 
 
+def _pedestal_and_statue(floor_friction, top=None):
+    """The 0.3 × 1.2 m, 100 kg statue on a 0.8 × 0.5 m, 300 kg pedestal (``top``: the friction
+    of the face between them; None: it never slips)."""
+    return Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(**STATUE)),
+                 interfaces=(Interface(friction=floor_friction), Interface(friction=top)))
+
+
 @pytest.mark.parametrize("amplitude, overturns", [(6.0, True), (3.0, True), (1.5, False)])
 def test_single_block_matches_todays_solver(amplitude, overturns):
     motion = rocking.SinePulse(amplitude=amplitude, frequency=1.0)
@@ -164,8 +171,7 @@ def test_onset_stack_slides_on_floor():
 def test_energy_balance_and_dissipation():
     """E(t) − E(0) = W_in − D_friction − D_impact to the solver's accuracy, and no impact adds energy."""
     fr = Friction(static=0.3, kinetic=0.25)
-    stack = Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(width=0.3, height=1.2, mass=100.0)),
-                  interfaces=(Interface(friction=fr), Interface()))
+    stack = _pedestal_and_statue(fr)
     r = simulate_stack(stack, rocking.SinePulse(amplitude=3.5, frequency=1.0))
     scale = np.max(np.abs(r.input_work)) + np.max(np.abs(r.energy - r.initial_energy))
     assert np.max(np.abs(r.balance_error())) < 1e-9 * scale
@@ -175,8 +181,7 @@ def test_energy_balance_and_dissipation():
 
 
 def test_mirror_symmetry():
-    stack = Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(width=0.3, height=1.2, mass=100.0)),
-                  interfaces=(Interface(friction=Friction(static=0.3, kinetic=0.25)), Interface()))
+    stack = _pedestal_and_statue(Friction(static=0.3, kinetic=0.25))
     a = simulate_stack(stack, rocking.SinePulse(amplitude=3.5, frequency=1.0))
     b = simulate_stack(stack, rocking.SinePulse(amplitude=-3.5, frequency=1.0))
     assert np.max(np.abs(a.rotation + b.rotation)) < 1e-10
@@ -209,8 +214,7 @@ def test_the_contact_states_are_saved_in_their_own_columns():
     flat (2); the pedestal stays flat on the floor; the pedestal slips (tangential state ±1) the
     way it moves; the statue's face, without friction, never slips (0)."""
     fr = Friction(static=0.35, kinetic=0.3)
-    stack = Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(width=0.3, height=1.2, mass=100.0)),
-                  interfaces=(Interface(friction=fr), Interface()))
+    stack = _pedestal_and_statue(fr)
     r = simulate_stack(stack, rocking.SinePulse(amplitude=4.0, frequency=1.0), options={"save_dt": 0.005})
     assert r.blocks[1]["overturned"]
     turned = np.abs(r.rotation[:, 1]) > 1e-6
@@ -244,8 +248,7 @@ def test_a_record_is_saved_at_its_own_sample_interval_unless_asked_otherwise():
 def test_a_stack_that_never_moves_reports_no_energy_balance_error():
     """Below every threshold nothing moves: no work, no change of energy, so the ledger's scale
     is zero and the relative balance error is 0 (not undefined, not 1)."""
-    stack = Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(width=0.3, height=1.2, mass=100.0)),
-                  interfaces=(Interface(friction=Friction(static=0.5, kinetic=0.4)), Interface()))
+    stack = _pedestal_and_statue(Friction(static=0.5, kinetic=0.4))
     r = simulate_stack(stack, rocking.SinePulse(amplitude=0.5, frequency=1.0))
     assert r.status == "completed" and np.all(r.velocity == 0.0)
     assert np.all(r.input_work == 0.0) and np.all(r.energy == r.initial_energy)
@@ -280,8 +283,7 @@ def test_flight_when_the_floor_falls_faster_than_gravity():
     """a_v = −k t: every contact opens when a_v = −g, at t* = g/k, and from then on each block
     moves relative to the floor with acceleration −(g + a_v) = k (t − t*): Y = Y₀ + k (t − t*)³/6."""
     k = 20.0
-    stack = Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(width=0.3, height=1.2, mass=100.0)),
-                  interfaces=(Interface(friction=Friction(static=0.3, kinetic=0.25)), Interface()))
+    stack = _pedestal_and_statue(Friction(static=0.3, kinetic=0.25))
     r = simulate_stack(stack, _VerticalRamp(k, 1.0), duration=0.8, options={"gravity": G})
     t_star = G / k
     assert abs(r.blocks[0]["lifted_off_time"] - t_star) < 1e-9
@@ -443,8 +445,7 @@ def test_enough_top_friction_changes_nothing(mu):
     top face that never slips: the same rocking, the same sequence of impacts to rest, no slip.
     (A rest rule that let the landing statue slip made it chatter for 60 s and gain energy.)"""
     def run(top):
-        stack = Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(width=0.3, height=1.2, mass=100.0)),
-                      interfaces=(Interface(friction=Friction(static=0.3, kinetic=0.25)), Interface(friction=top)))
+        stack = _pedestal_and_statue(Friction(static=0.3, kinetic=0.25), top=top)
         return simulate_stack(stack, rocking.SinePulse(amplitude=2.8, frequency=1.0))
 
     never, frictional = run(None), run(Friction(static=mu, kinetic=0.8 * mu))
@@ -688,8 +689,7 @@ def test_a_run_whose_blocks_overlap_gives_no_verdict(monkeypatch):
     from rocking.stack import engine
     from rocking.stack import simulate as sim
 
-    stack = Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(width=0.3, height=1.2, mass=100.0)),
-                  interfaces=(Interface(friction=Friction(static=0.3)), Interface()))
+    stack = _pedestal_and_statue(Friction(static=0.3))
     motion = rocking.SinePulse(amplitude=1.0, frequency=1.0)  # nothing moves: 1 < 0.25 g
     honest = simulate_stack(stack, motion)
     assert honest.status == "completed" and sim.deepest_sink(stack, honest.pose) == 0.0
