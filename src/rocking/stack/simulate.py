@@ -161,7 +161,9 @@ class StackResponse:
     def summary(self) -> dict:
         """``blocks`` (from the floor up) and ``interfaces`` (floor first); the top-level keys
         describe the top block, the statue, as ``rocking run`` does for a single statue. SI units,
-        radians, null when it did not happen."""
+        radians, null when it did not happen. ``energy_balance_error`` is the largest
+        |:meth:`balance_error`| over the run divided by its energy scale, max |W_in| + max |E − E₀|
+        (0 when nothing moved)."""
         top = self.blocks[-1]
         scale = float(np.max(np.abs(self.input_work)) + np.max(np.abs(self.energy - self.initial_energy)))
         out = {key: top[key] for key in (
