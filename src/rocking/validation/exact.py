@@ -376,6 +376,42 @@ def _free_outcome(block: Block, th: float, thd: float, s: int, eta: float, out: 
             return out
 
 
+def composite_rocking(mass: float, io: float, b: float, h_c: float, a: float, width: float,
+                      g: float = G) -> tuple[float, float]:
+    """Any rigid body rocking about a floor corner, set rocking from rest by a rectangular pulse.
+
+    ``mass`` (kg) and ``io``, its moment of inertia about the corner (kg·m²); its centre of mass
+    ``b`` (m) sideways from the corner and ``h_c`` (m) above it; the floor accelerates by ``a``
+    (m/s², away from the corner, a > g·b/h_c) for ``width`` s, then stops. Housner's equation for
+    a general body, θ ≥ 0 the tilt, R_c = √(b² + h_c²), α_c = atan(b/h_c):
+
+        I_O θ̈ = m R_c [a_g cos(α_c − θ) − g sin(α_c − θ)],   a_g = a for t < width, else 0.
+
+    Returns (the time θ is back at 0, s; the largest θ on the way, rad)."""
+    if not a * h_c > g * b:
+        raise ValueError(f"a = {a!r} m/s² does not lift the body (g·b/h_c = {g * b / h_c!r})")
+    r_c, a_c = math.hypot(b, h_c), math.atan2(b, h_c)
+
+    def rhs(t, y, ag):
+        return (y[1], mass * r_c * (ag * math.cos(a_c - y[0]) - g * math.sin(a_c - y[0])) / io)
+
+    def back(_t, y, _ag):
+        return y[0]
+
+    back.terminal, back.direction = True, -1
+    kw = dict(method="DOP853", rtol=1e-12, atol=1e-14)
+    # the pulse's end is a kink of θ̈: integrate the two pieces separately
+    during = integrate.solve_ivp(rhs, (0.0, width), (0.0, 0.0), args=(a,), **kw)
+    after = integrate.solve_ivp(rhs, (width, width + 1e3), during.y[:, -1], args=(0.0,), events=back,
+                                dense_output=True, **kw)
+    if not after.t_events[0].size:
+        raise ValueError("the body does not come back to θ = 0 (it overturns)")
+    t_back = float(after.t_events[0][0])
+    # the peak is where θ̇ changes sign after the pulse (θ̇ > 0 at its end)
+    turn = optimize.brentq(lambda t: after.sol(t)[1], width, t_back)
+    return t_back, float(after.sol(turn)[0])
+
+
 def _uplift_time(motion: Motion, t_from: float, threshold: float) -> float | None:
     """First t ≥ t_from (s) in the motion where |a_g| exceeds ``threshold`` (m/s²), or None."""
     n = 4000

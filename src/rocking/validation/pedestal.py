@@ -47,13 +47,47 @@ def reduction_rows(quick: bool) -> list[Row]:
     return rows
 
 
-def _ramp_onset(stack, block: int, rate: float = 0.05) -> float:
-    """Floor acceleration (m/s²) at which ``block`` (0 = the lowest) first rocks under a slow ramp
-    a = rate·t from rest, through the general stack engine."""
+def _ramp_onset(stack, block: int, rate: float = 0.05, what: str = "first_rocking_time") -> float:
+    """Floor acceleration (m/s²) at which ``block`` (0 = the lowest) first rocks (or, with
+    ``what="first_sliding_time"``, slides) under a slow ramp a = rate·t from rest, through the
+    general stack engine."""
     from rocking.stack import simulate_stack
 
     r = simulate_stack(stack, rk.Ramp(rate=rate, end=60.0), duration=60.0, options={"gravity": ex.G})
-    return rate * r.blocks[block]["first_rocking_time"]
+    return rate * r.blocks[block][what]
+
+
+def _composite_rows() -> list[Row]:
+    """A two-block stack that rocks as one body (its top block squat, the interface stuck) against
+    Housner's equation for that body, integrated with SciPy (:func:`exact.composite_rocking`)."""
+    from rocking.stack import Block, Interface, Stack, simulate_stack
+
+    (m1, w1, h1), (m2, w2, h2) = (40.0, 0.3, 1.0), (60.0, 0.5, 0.5)
+    stack = Stack(blocks=(Block(width=w1, height=h1, mass=m1), Block(width=w2, height=h2, mass=m2)),
+                  interfaces=(Interface(), Interface()))
+    a, width = 0.3 * ex.G, 0.25
+    r = simulate_stack(stack, rk.RectanglePulse(amplitude=a, width=width), duration=4.0, options={"gravity": ex.G})
+    impacts = r.events[r.events[:, 2] == -1]
+    # the composite body about the floor corner it tips on: each block's own inertia about its
+    # centre plus its mass times its squared distance from the corner (both centred on the corner's
+    # vertical at b1 = w1/2)
+    parts = [(m1, w1, h1, 0.5 * h1), (m2, w2, h2, h1 + 0.5 * h2)]
+    mass = m1 + m2
+    io = sum(m * (w * w + h * h) / 12.0 + m * ((0.5 * w1) ** 2 + y * y) for m, w, h, y in parts)
+    h_c = sum(m * y for m, _, _, y in parts) / mass
+    t_back, peak = ex.composite_rocking(mass, io, 0.5 * w1, h_c, a, width)
+    case = (f"two-block stack that rocks as one (0.3 × 1 m, 40 kg, under a squat 0.5 × 0.5 m, 60 kg): rectangular "
+            f"pulse 0.3 g for {width:g} s")
+    whole = "the top block, squat (tan α2 = 1), never rocks on the plinth: the stack is one body"
+    return [
+        Row("ST1.6", "Psycharis 1990 (the stack as one body)", f"{case}; largest rotation", "crosscheck", exact=peak,
+            ours=r.blocks[0]["peak_rotation"], unit="rad", tol=1e-8, note=whole,
+            published_label="Housner's equation of the composite body",
+            passed=r.blocks[1]["first_rocking_time"] is None),
+        Row("ST1.7", "Psycharis 1990 (the stack as one body)", f"{case}; time of the first impact", "crosscheck",
+            exact=t_back, ours=float(impacts[0, 0]) if len(impacts) else None, unit="s", tol=1e-9,
+            published_label="Housner's equation of the composite body"),
+    ]
 
 
 def stack_rows() -> list[Row]:
@@ -77,6 +111,23 @@ def stack_rows() -> list[Row]:
                                                "2 × 0.3 m plinth) at a_g = g·b2/h2; the smaller threshold starts the "
                                                "motion", "exact", published=ex.G * 0.15 / 0.6, ours=_ramp_onset(top, 1),
                     unit="m/s²", tol=1e-6))
+    # the top block slides first: friction on its face below both rocking thresholds and the floor's
+    slides = Stack(blocks=(Block(width=2.0, height=0.3, mass=500.0), Block(width=0.6, height=0.6, mass=50.0)),
+                   interfaces=(Interface(), Interface(friction=rk.Friction(static=0.15, kinetic=0.1))))
+    rows.append(Row("ST1.4", "Coulomb; Shenton 1996's slide-first branch, on the top face",
+                    "two-block stack (0.6 × 0.6 m on a 2 × 0.3 m plinth, held by the floor), top face μs = 0.15: the "
+                    "top block slides at a_g = μs·g, below its rocking threshold g·b2/h2 = g", "exact",
+                    published=0.15 * ex.G, ours=_ramp_onset(slides, 1, what="first_sliding_time"), unit="m/s²",
+                    tol=1e-6))
+    # the whole stack slides first: the floor face is the weaker one
+    floor = Stack(blocks=(Block(width=2.0, height=0.3, mass=500.0), Block(width=0.6, height=0.6, mass=50.0)),
+                  interfaces=(Interface(friction=rk.Friction(static=0.12, kinetic=0.1)),
+                              Interface(friction=rk.Friction(static=0.3, kinetic=0.25))))
+    rows.append(Row("ST1.5", "Coulomb; Shenton 1996's slide-first branch, on the floor",
+                    "the same stack with floor μs = 0.12 under a top face μs = 0.3: the stack slides as one at "
+                    "a_g = μs,floor·g; the top block does not slide", "exact", published=0.12 * ex.G,
+                    ours=_ramp_onset(floor, 0, what="first_sliding_time"), unit="m/s²", tol=1e-6))
+    rows.extend(_composite_rows())
     rows.append(Row("ST1.3", "Makris & Vassiliou 2013",
                     "rocking frame (columns and a free cap beam): p̂ = p·√((1+2γ)/(1+3γ)), "
                     "η̂ = (1 − 1.5 sin²α + 3γ cos 2α)/(1 + 3γ)", "pending",
@@ -93,9 +144,12 @@ paper's own case studies are compared in `docs/paper-case-studies.md`."""
 
 INTRO_STACKS = """\
 Stacks of blocks (a statue on a plinth that can itself rock) run on the general stack engine
-(`rocking.stack`, `docs/theory/stack.md`): which block starts to rock first, and at what floor
-acceleration, under a slow ramp. A rocking frame (columns with a free cap beam) is not a stack of
-one block on another and waits for a multi-contact model."""
+(`rocking.stack`, `docs/theory/stack.md`). Under a slow ramp from rest, which motion starts first
+and at what floor acceleration: the top block rocking, the stack rocking as one, the top block
+sliding, the stack sliding (the smallest of the four thresholds wins). Once the stack rocks as one
+body, its motion is that of Housner's equation for the composite body (its mass, its centre of mass
+and its inertia about the floor corner), integrated here with SciPy. A rocking frame (columns with
+a free cap beam) is not a stack of one block on another and waits for a multi-contact model."""
 
 
 def sections(quick: bool, progress) -> list[Section]:
