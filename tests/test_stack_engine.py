@@ -217,6 +217,21 @@ def test_a_run_of_no_positive_finite_duration_is_refused(duration):
         simulate_stack(stack, rocking.SinePulse(amplitude=3.0, frequency=1.0), duration=duration)
 
 
+def test_the_run_is_called_as_documented_and_its_result_is_read_only():
+    """``simulate_stack(stack, motion, *, duration, options)``: stack and motion by position or by
+    name, the rest by name only (a bare number in third place is refused, not taken for a
+    duration); the response cannot be changed after the run (a summary, a report and a plot of
+    one response must tell the same story)."""
+    stack = Stack(blocks=(Block(width=0.3, height=1.2, mass=100.0),), interfaces=(Interface(),))
+    motion = rocking.SinePulse(amplitude=1.0, frequency=1.0)
+    r = simulate_stack(stack=stack, motion=motion, duration=0.5)
+    assert r.status == "completed" and r.end_time == 0.5
+    with pytest.raises(TypeError):
+        simulate_stack(stack, motion, 0.5)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        r.status = "overturned"
+
+
 def test_the_contact_states_are_saved_in_their_own_columns():
     """A statue rocking on a pedestal that slides (μs = 0.35 under a 4 m/s² sine pulse: it falls
     at 1.54 s), its saved states read against the geometry of the saved samples, not against the
