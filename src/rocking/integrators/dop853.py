@@ -402,3 +402,43 @@ def dense_component(y, F, x, j):
     for i in range(1, m):
         acc = (acc + F[m - 1 - i, j]) * (x if i % 2 == 0 else xm)
     return y[j] + acc
+
+
+@njit(cache=True, inline="always")
+def dense_sum(y, F, x, first, stride, count):
+    """The sum of ``count`` components of :func:`dense`, ``first``, ``first + stride``, … (a block's
+    absolute rotation is the sum of the rotations at the interfaces below it)."""
+    acc = 0.0
+    for i in range(count):
+        acc += dense_component(y, F, x, first + i * stride)
+    return acc
+
+
+@njit(cache=True, _nrt=False)
+def dense_sum_root(y, F, first, stride, count, f_lo, f_hi, x_hi):
+    """Fraction of the step in [0, x_hi] where :func:`dense_sum` changes sign, given its values
+    f_lo at 0 and f_hi at x_hi of opposite signs: the Illinois method, to 1e-10 of the step. (Used
+    for the turning points of a rotation, where the angle is insensitive to the position to first
+    order.)"""
+    lo, hi = 0.0, x_hi
+    side = 0
+    for _ in range(100):
+        x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
+        if not (lo < x < hi):
+            x = 0.5 * (lo + hi)
+        fx = dense_sum(y, F, x, first, stride, count)
+        if fx == 0.0:
+            return x
+        if (fx > 0.0) == (f_lo > 0.0):
+            lo, f_lo = x, fx
+            if side == 1:
+                f_hi *= 0.5
+            side = 1
+        else:
+            hi, f_hi = x, fx
+            if side == -1:
+                f_lo *= 0.5
+            side = -1
+        if hi - lo < 1e-10:
+            break
+    return 0.5 * (lo + hi)

@@ -314,30 +314,9 @@ def _positive_inside(p, sig, s, y0, F, h, loc, t0, exceeded, work, gbuf, index, 
 @njit(cache=True, _nrt=False)
 def _theta_dot_root(y0, F, f_lo, f_hi, x_hi):
     """Fraction of the step in [0, x_hi] where θ̇ changes sign, given θ̇ = f_lo at 0 and f_hi at
-    x_hi (Illinois method on the dense output). 1e-10 of the step is ample: θ at a turning point is insensitive to its position to
-    first order, and θ̇ is smooth inside a step."""
-    lo, hi = 0.0, x_hi
-    side = 0
-    for _ in range(100):
-        x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
-        if not (lo < x < hi):
-            x = 0.5 * (lo + hi)
-        fx = dop853.dense_component(y0, F, x, 3)
-        if fx == 0.0:
-            return x
-        if (fx > 0.0) == (f_lo > 0.0):
-            lo, f_lo = x, fx
-            if side == 1:
-                f_hi *= 0.5
-            side = 1
-        else:
-            hi, f_hi = x, fx
-            if side == -1:
-                f_lo *= 0.5
-            side = -1
-        if hi - lo < 1e-10:
-            break
-    return 0.5 * (lo + hi)
+    x_hi (the Illinois method on the dense output, to 1e-10 of the step: θ at a turning point is
+    insensitive to its position to first order, and θ̇ is smooth inside a step)."""
+    return dop853.dense_sum_root(y0, F, 3, 1, 1, f_lo, f_hi, x_hi)
 
 
 @njit(cache=True, inline="always")

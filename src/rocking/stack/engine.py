@@ -784,63 +784,27 @@ def _kinetic_of(P, ends, anchor, z, zd):
     return kinetic_energy(P, Xd, thd)
 
 
-@njit(cache=True, inline="always")
-def _turn_rate(y, F, x, nz, k, absolute):
-    """φ̇ of block k (or, ``absolute``, θ̇ = Σ_{j≤k} φ̇_j) at the fraction x of the step, rad/s."""
-    if not absolute:
-        return dop853.dense_component(y, F, x, nz + 3 * k + 1)
-    rate = 0.0
-    for j in range(k + 1):
-        rate += dop853.dense_component(y, F, x, nz + 3 * j + 1)
-    return rate
-
-
 @njit(cache=True, _nrt=False)
 def _peaks_inside(P, y, F, x_end, summ):
-    """The turning points of each block's rotation φ (and of its absolute rotation θ) inside the
-    step, up to its fraction ``x_end``: where the rate changes sign, the angle there counts for
-    the peaks. The step's ends alone would under-read a peak by ½|φ̈|δ², δ the distance to the
-    nearer end (up to 4e-5 rad in the paper's cases). Illinois' method on the dense output, to
-    1e-10 of the step: the angle at a turning point is insensitive to its position to first
-    order."""
+    """The turning points of each block's rotation φ (and of its absolute rotation θ = Σφ of the
+    interfaces up to it) inside the step, up to its fraction ``x_end``: where the rate changes
+    sign, the angle there counts for the peaks. The step's ends alone would under-read a peak by
+    ½|φ̈|δ², δ the distance to the nearer end (up to 4e-5 rad in the paper's cases)."""
     n = P.shape[0]
     nz = 3 * n
     for k in range(n):
         for absolute in (False, True):
-            f_lo = _turn_rate(y, F, 0.0, nz, k, absolute)
-            f_hi = _turn_rate(y, F, x_end, nz, k, absolute)
+            # φ_k is component 3k + 1 of the state, φ̇_k component nz + 3k + 1; θ_k sums j ≤ k
+            first, count = (1, k + 1) if absolute else (3 * k + 1, 1)
+            f_lo = dop853.dense_sum(y, F, 0.0, nz + first, 3, count)
+            f_hi = dop853.dense_sum(y, F, x_end, nz + first, 3, count)
             if not ((f_lo > 0.0 and f_hi < 0.0) or (f_lo < 0.0 and f_hi > 0.0)):
                 continue
-            lo, hi = 0.0, x_end
-            side = 0
-            for _ in range(100):
-                x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
-                if not (lo < x < hi):
-                    x = 0.5 * (lo + hi)
-                fx = _turn_rate(y, F, x, nz, k, absolute)
-                if fx == 0.0:
-                    lo = hi = x
-                    break
-                if (fx > 0.0) == (f_lo > 0.0):
-                    lo, f_lo = x, fx
-                    if side == 1:
-                        f_hi *= 0.5
-                    side = 1
-                else:
-                    hi, f_hi = x, fx
-                    if side == -1:
-                        f_lo *= 0.5
-                    side = -1
-                if hi - lo < 1e-10:
-                    break
-            x = 0.5 * (lo + hi)
-            angle = dop853.dense_component(y, F, x, 3 * k + 1)
-            if absolute:
-                for j in range(k):
-                    angle += dop853.dense_component(y, F, x, 3 * j + 1)
+            x = dop853.dense_sum_root(y, F, nz + first, 3, count, f_lo, f_hi, x_end)
+            angle = abs(dop853.dense_sum(y, F, x, first, 3, count))
             slot = B_PEAK_ABS_THETA if absolute else B_PEAK_PHI
-            if abs(angle) > summ[k, slot]:
-                summ[k, slot] = abs(angle)
+            if angle > summ[k, slot]:
+                summ[k, slot] = angle
 
 
 @njit(cache=True, _nrt=False)
