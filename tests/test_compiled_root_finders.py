@@ -108,3 +108,44 @@ def test_minimum_finds_a_narrow_dip_below_zero_anywhere_in_the_step(centre):
 def test_minimum_reports_no_dip_for_a_guard_that_stays_positive():
     y0, F = _dense_rows(lambda x: (x - 0.4) ** 2 + 1e-4, 3)
     assert _minimum(*_search_args(y0, F)) == -1.0
+
+
+def _dense_columns(polys, n_cols, n_rows=5):
+    """The state at the step's start and ``F`` whose column j interpolates ``polys[j]`` (a callable
+    of x, degree ≤ n_rows), as :func:`_dense_rows` does for one column."""
+    F = np.zeros((dop853.INTERPOLATOR_POWER, n_cols))
+    y0 = np.zeros(n_cols)
+    xs = np.linspace(0.05, 0.95, n_rows)
+    basis = np.empty((n_rows, n_rows))
+    for k in range(n_rows):
+        unit = np.zeros((dop853.INTERPOLATOR_POWER, 1))
+        unit[k, 0] = 1.0
+        basis[:, k] = [dop853.dense_component(np.zeros(1), unit, x, 0) for x in xs]
+    for j, poly in polys.items():
+        y0[j] = poly(0.0)
+        F[:n_rows, j] = np.linalg.solve(basis, [poly(x) - y0[j] for x in xs])
+    return y0, F
+
+
+@pytest.mark.parametrize("root", [0.07, 0.5, 0.9])
+@pytest.mark.parametrize("bend", ["convex", "concave"])
+@pytest.mark.parametrize("sign", [1.0, -1.0])
+def test_dense_sum_root_finds_the_zero_of_a_sum_to_its_tolerance(root, bend, sign):
+    # The turning point of a block's absolute rotation θ = Σ φ is the zero of a sum of dense
+    # components (the stack engine; the two-body solver's θ̇ is a sum of one). On a convex or
+    # concave function plain regula falsi keeps one end of the bracket for good and, after its 100
+    # iterations, would return the middle of a bracket still ~0.5 wide; the Illinois rule halves
+    # the stuck end's value. Both orientations of the sign change and both bends are asked for, so
+    # that each end gets stuck in one of the cases. Tolerance: the documented 1e-10 of the step.
+    if bend == "convex":
+        total = lambda x: sign * ((1.2 - x) ** 4 - (1.2 - root) ** 4)  # noqa: E731
+    else:
+        total = lambda x: sign * ((root + 0.2) ** 4 - (x + 0.2) ** 4)  # noqa: E731
+    # split over two components, 3 apart (first = 1, stride = 3, count = 2), with a polynomial
+    # that cancels in the sum
+    part = lambda x: 0.3 * x**3 - x  # noqa: E731
+    y0, F = _dense_columns({1: lambda x: 0.4 * total(x) + part(x), 4: lambda x: 0.6 * total(x) - part(x)}, 6)
+    f = lambda x: dop853.dense_sum(y0, F, x, 1, 3, 2)  # noqa: E731
+    assert f(root) == pytest.approx(0.0, abs=1e-12)
+    x = dop853.dense_sum_root(y0, F, 1, 3, 2, f(0.0), f(1.0), 1.0)
+    assert x == pytest.approx(root, abs=1e-10)
