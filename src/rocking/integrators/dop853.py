@@ -442,3 +442,146 @@ def dense_sum_root(y, F, first, stride, count, f_lo, f_hi, x_hi):
         if hi - lo < 1e-10:
             break
     return 0.5 * (lo + hi)
+
+
+# --- The same steps on part of the state -----------------------------------------------------
+# A contact mode holds some coordinates still: their rows of K are zero at every stage (zero
+# velocity, zero acceleration), so the sums above give y + 0.0 for them. The variants below
+# take the components in a permutation ``act`` of the state whose first ``m`` entries are the
+# moving ones; they do the arithmetic on those alone and write what the full sums give for the
+# rest (y + 0.0, which turns a −0.0 into +0.0 as the sums do). Same results, bit for bit, when
+# the rows of the others really are zero; the caller must make sure of that.
+
+
+@njit(cache=True, inline="always")
+def stage_input_on(y, K, h, stage, out, act, m):
+    """:func:`stage_input` computed on the components act[:m] only (see above)."""
+    if m == act.shape[0]:  # every component moves: no indirection
+        stage_input(y, K, h, stage, out)
+        return
+    for q in range(m):
+        j = act[q]
+        acc = 0.0
+        for k in range(stage):
+            a = A[stage, k]
+            if a != 0.0:
+                acc += a * K[k, j]
+        out[j] = y[j] + h * acc
+    for q in range(m, act.shape[0]):
+        j = act[q]
+        out[j] = y[j] + 0.0
+
+
+@njit(cache=True, inline="always")
+def advance_on(y, K, h, y_new, act, m):
+    """:func:`advance` computed on the components act[:m] only."""
+    if m == act.shape[0]:  # every component moves: no indirection
+        advance(y, K, h, y_new)
+        return
+    for q in range(m):
+        j = act[q]
+        acc = 0.0
+        for k in range(N_STAGES):
+            b = B[k]
+            if b != 0.0:
+                acc += b * K[k, j]
+        y_new[j] = y[j] + h * acc
+    for q in range(m, act.shape[0]):
+        j = act[q]
+        y_new[j] = y[j] + 0.0
+
+
+@njit(cache=True, inline="always")
+def error_norm_on(y, y_new, K, h, rtol, atol, n_controlled, act, m):
+    """:func:`error_norm` summed over the components act[:m] (those below ``n_controlled``), in
+    increasing order of index as there: the others add exact zeros. ``act[:m]`` must be sorted."""
+    if m == act.shape[0]:  # every component moves: no indirection
+        return error_norm(y, y_new, K, h, rtol, atol, n_controlled)
+    s5 = 0.0
+    s3 = 0.0
+    for q in range(m):
+        j = act[q]
+        if j >= n_controlled:
+            continue
+        e5 = 0.0
+        e3 = 0.0
+        for k in range(N_STAGES):
+            e5 += E5[k] * K[k, j]
+            e3 += E3[k] * K[k, j]
+        scale = atol + rtol * max(abs(y[j]), abs(y_new[j]))
+        e5 /= scale
+        e3 /= scale
+        s5 += e5 * e5
+        s3 += e3 * e3
+    if s5 == 0.0 and s3 == 0.0:
+        return 0.0
+    return abs(h) * s5 / np.sqrt((s5 + 0.01 * s3) * n_controlled)
+
+
+@njit(cache=True, _nrt=False)
+def extra_stage_input_on(y, K, h, j, out, act, m):
+    """:func:`extra_stage_input` computed on the components act[:m] only."""
+    if m == act.shape[0]:  # every component moves: no indirection
+        extra_stage_input(y, K, h, j, out)
+        return
+    for q in range(m):
+        i = act[q]
+        acc = 0.0
+        for r in range(_EXTRA_NNZ):
+            acc += EXTRA_VALS[j, r] * K[EXTRA_COLS[j, r], i]
+        out[i] = y[i] + h * acc
+    for q in range(m, act.shape[0]):
+        i = act[q]
+        out[i] = y[i] + 0.0
+
+
+@njit(cache=True, _nrt=False)
+def prepare_dense_on(y, y_new, K, h, F, act, m):
+    """:func:`prepare_dense` computed on the components act[:m] only; the others get an
+    interpolant of zeros (:func:`dense` then gives y + 0.0 for them, as it would from the full
+    coefficients, whose first row is +0.0)."""
+    if m == act.shape[0]:  # every component moves: no indirection
+        prepare_dense(y, y_new, K, h, F)
+        return
+    for q in range(m):
+        j = act[q]
+        dy = y_new[j] - y[j]
+        f0 = K[0, j]
+        F[0, j] = dy
+        F[1, j] = h * f0 - dy
+        F[2, j] = 2.0 * dy - h * (K[FSAL, j] + f0)
+        for i in range(INTERPOLATOR_POWER - 3):
+            acc = 0.0
+            for r in range(D_COLS.shape[0]):
+                acc += D_VALS[i, r] * K[D_COLS[r], j]
+            F[3 + i, j] = h * acc
+    for q in range(m, act.shape[0]):
+        j = act[q]
+        for i in range(INTERPOLATOR_POWER):
+            F[i, j] = 0.0
+
+
+@njit(cache=True, _nrt=False)
+def dense_on(y, F, x, out, act, m):
+    """:func:`dense` computed on the components act[:m] only; the others get y + 0.0, which is
+    what :func:`dense` gives them from the zero coefficients of :func:`prepare_dense_on`."""
+    if m == act.shape[0]:  # every component moves: no indirection
+        dense(y, F, x, out)
+        return
+    xm = 1.0 - x
+    rows = F.shape[0]
+    for q in range(m):
+        j = act[q]
+        out[j] = F[rows - 1, j] * x
+    for i in range(1, rows):
+        factor = x if i % 2 == 0 else xm
+        row = rows - 1 - i
+        for q in range(m):
+            j = act[q]
+            out[j] = (out[j] + F[row, j]) * factor
+    for q in range(m):
+        j = act[q]
+        out[j] += y[j]
+    for q in range(m, act.shape[0]):
+        j = act[q]
+        out[j] = y[j] + 0.0

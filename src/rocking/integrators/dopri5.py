@@ -106,3 +106,91 @@ def prepare_dense_nested(y, K, h, F):
         F[3, j] = c4
         for k in range(4, F.shape[0]):
             F[k, j] = 0.0
+
+
+# --- The same steps on part of the state (see the note in dop853.py) -------------------------
+
+
+@njit(cache=True, _nrt=False)
+def stage_input_on(y, K, h, stage, out, act, m):
+    """:func:`stage_input` computed on the components act[:m] only; the others get y + 0.0."""
+    if m == act.shape[0]:  # every component moves: no indirection
+        stage_input(y, K, h, stage, out)
+        return
+    for q in range(m):
+        j = act[q]
+        acc = 0.0
+        for k in range(stage):
+            acc += A[stage, k] * K[k, j]
+        out[j] = y[j] + h * acc
+    for q in range(m, act.shape[0]):
+        j = act[q]
+        out[j] = y[j] + 0.0
+
+
+@njit(cache=True, inline="always")
+def advance_on(y, K, h, y_new, act, m):
+    """:func:`advance` computed on the components act[:m] only; the others get y + 0.0."""
+    if m == act.shape[0]:  # every component moves: no indirection
+        advance(y, K, h, y_new)
+        return
+    for q in range(m):
+        j = act[q]
+        acc = 0.0
+        for k in range(6):
+            acc += BW[k] * K[k, j]
+        y_new[j] = y[j] + h * acc
+    for q in range(m, act.shape[0]):
+        j = act[q]
+        y_new[j] = y[j] + 0.0
+
+
+@njit(cache=True, inline="always")
+def error_norm_on(y, y_new, K, h, rtol, atol, n_controlled, act, m):
+    """:func:`error_norm` summed over act[:m] (sorted; those below ``n_controlled``)."""
+    if m == act.shape[0]:  # every component moves: no indirection
+        return error_norm(y, y_new, K, h, rtol, atol, n_controlled)
+    total = 0.0
+    for q in range(m):
+        j = act[q]
+        if j >= n_controlled:
+            continue
+        e = 0.0
+        for k in range(7):
+            e += E[k] * K[k, j]
+        scale = atol + rtol * max(abs(y[j]), abs(y_new[j]))
+        total += (h * e / scale) ** 2
+    return np.sqrt(total / n_controlled)
+
+
+@njit(cache=True, _nrt=False)
+def prepare_dense_nested_on(y, K, h, F, act, m):
+    """:func:`prepare_dense_nested` computed on act[:m] only; the others get zeros."""
+    if m == act.shape[0]:  # every component moves: no indirection
+        prepare_dense_nested(y, K, h, F)
+        return
+    for q in range(m):
+        j = act[q]
+        c1 = 0.0
+        c2 = 0.0
+        c3 = 0.0
+        c4 = 0.0
+        for k in range(7):
+            c1 += K[k, j] * P[k, 0]
+            c2 += K[k, j] * P[k, 1]
+            c3 += K[k, j] * P[k, 2]
+            c4 += K[k, j] * P[k, 3]
+        c1 *= h
+        c2 *= h
+        c3 *= h
+        c4 *= h
+        F[0, j] = c1 + c2 + c3 + c4
+        F[1, j] = -c2 - c3 - c4
+        F[2, j] = -c3 - 2.0 * c4
+        F[3, j] = c4
+        for k in range(4, F.shape[0]):
+            F[k, j] = 0.0
+    for q in range(m, act.shape[0]):
+        j = act[q]
+        for k in range(F.shape[0]):
+            F[k, j] = 0.0

@@ -58,8 +58,10 @@ from .modes import (
 
 FSAL5 = 6  # row of K holding the right-hand side at a Dormand–Prince 5(4) step's end
 # new_workspace's tuple after the frame and the solve scratch (its first 15 arrays): dy, Λ, a
-# state-sized work array, and Λ at the end of the last step
-WS_DY, WS_LAM, WS_WORK, WS_LAM_END = 15, 16, 17, 18
+# state-sized work array, Λ at the end of the last step, and the state's components sorted into
+# those the current step integrates and those its mode holds still (:func:`_moving`)
+WS_FROZEN = 10
+WS_DY, WS_LAM, WS_WORK, WS_LAM_END, WS_ACT, WS_N_ACT = 15, 16, 17, 18, 19, 20
 N_SUB = 4  # interior points of a step where the guards are sampled
 LOOKAHEAD = 1e-9  # s (relative to t beyond 1 s): where the mode after an event is decided
 MAX_REPEATS = 50  # events at one instant before the run stops as inconsistent
@@ -116,13 +118,14 @@ def new_workspace(n):
     cost more than the mechanics (bench/stack.py). Layout: the frame of
     :func:`rocking.stack.kinematics.forward` (A, β, C, X, Ẋ, Θ, Θ̇), then M, f, z̈, the four
     scratch arrays of :func:`rocking.stack.modes.solve_mode_in`, then dy, Λ, a state-sized work
-    array and Λ at the end of the last step."""
+    array, Λ at the end of the last step, and the moving components of the state and their count
+    (:func:`_moving`)."""
     nz = 3 * n
     A, beta, C, X, Xd, th, thd = new_frame(n)
     return (A, beta, C, X, Xd, th, thd, np.zeros((nz, nz)), np.zeros(nz), np.zeros(nz),
             np.zeros(nz, dtype=np.bool_), np.zeros(nz, dtype=np.int64), np.zeros(nz, dtype=np.int64),
             np.zeros((nz, nz)), np.zeros(nz), np.zeros(2 * nz + 2), np.zeros(nz), np.zeros(2 * nz + 2),
-            np.zeros(nz))
+            np.zeros(nz), np.zeros(2 * nz + 2, dtype=np.int64), np.zeros(1, dtype=np.int64))
 
 
 @njit(cache=True, _nrt=False)
@@ -251,16 +254,64 @@ def _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, out, ws):
 
 
 @njit(cache=True, _nrt=False)
+def _moving(P, nstate, tstate, y, ws):
+    """Sort the components of the state for the next step (into ws[WS_ACT], their count into
+    ws[WS_N_ACT]): first, in increasing order, those the step integrates: the free coordinates of
+    the mode, their velocities, any held coordinate whose velocity is not exactly zero, and the
+    ledger; then the rest. The rest have zero rows of K at every stage (a held coordinate has
+    z̈ = 0 exactly, and ż = 0 exactly unless listed), so the integrators' ``_on`` variants skip
+    their arithmetic and give what the full sums give, bit for bit: in a mode of one or two free
+    coordinates, most of the state stands still."""
+    n = P.shape[0]
+    nz = 3 * n
+    frozen = ws[WS_FROZEN]
+    act = ws[WS_ACT]
+    if n == 1:
+        # a single block's state has 8 components: skipping half of them saves less than the
+        # indirection costs (bench/stack.py's r1 ran 5 % slower), so all count as moving
+        for j in range(2 * nz + 2):
+            act[j] = j
+        ws[WS_N_ACT][0] = 2 * nz + 2
+        return
+    frozen_set(nstate, tstate, P, frozen)
+    m = 0
+    for i in range(nz):
+        if not frozen[i] or y[nz + i] != 0.0:
+            act[m] = i
+            m += 1
+    for i in range(nz):
+        if not frozen[i]:
+            act[m] = nz + i
+            m += 1
+    act[m] = 2 * nz
+    act[m + 1] = 2 * nz + 1
+    m += 2
+    r = m
+    for i in range(nz):
+        if frozen[i] and y[nz + i] == 0.0:
+            act[r] = i
+            r += 1
+    for i in range(nz):
+        if frozen[i]:
+            act[r] = nz + i
+            r += 1
+    ws[WS_N_ACT][0] = m
+
+
+@njit(cache=True, _nrt=False)
 def _step(P, ends, anchor, nstate, tstate, t, y, h, loc, gravity, K, y_new, rtol, atol, n_ctrl, ws):
     """One DOP853 step; returns its error norm. The contact forces at its end (the FSAL stage)
-    are left in ws[WS_LAM_END], for the guards and the tracking there."""
+    are left in ws[WS_LAM_END], for the guards and the tracking there. Integrates the components
+    :func:`_moving` listed."""
     work = ws[WS_WORK]
+    act = ws[WS_ACT]
+    m = ws[WS_N_ACT][0]
     for stage in range(1, dop853.N_STAGES):
-        dop853.stage_input(y, K, h, stage, work)
+        dop853.stage_input_on(y, K, h, stage, work, act, m)
         _rhs(P, ends, anchor, nstate, tstate, t + dop853.C[stage] * h, work, loc, gravity, K[stage], ws)
-    dop853.advance(y, K, h, y_new)
+    dop853.advance_on(y, K, h, y_new, act, m)
     evaluate(P, ends, anchor, nstate, tstate, t + h, y_new, loc, gravity, K[dop853.FSAL], ws[WS_LAM_END], ws)
-    return dop853.error_norm(y, y_new, K, h, rtol, atol, n_ctrl)
+    return dop853.error_norm_on(y, y_new, K, h, rtol, atol, n_ctrl, act, m)
 
 
 @njit(cache=True, _nrt=False)
@@ -269,22 +320,26 @@ def _step5(P, ends, anchor, nstate, tstate, t, y, h, loc, gravity, K, y_new, rto
     rocking.simulate): where DOP853's 12 stages would buy accuracy the short step already has.
     Its end forces go to ws[WS_LAM_END], its end right-hand side to K[FSAL5]."""
     work = ws[WS_WORK]
+    act = ws[WS_ACT]
+    m = ws[WS_N_ACT][0]
     for stage in range(1, 6):
-        dopri5.stage_input(y, K, h, stage, work)
+        dopri5.stage_input_on(y, K, h, stage, work, act, m)
         _rhs(P, ends, anchor, nstate, tstate, t + dopri5.C[stage] * h, work, loc, gravity, K[stage], ws)
-    dopri5.advance(y, K, h, y_new)
+    dopri5.advance_on(y, K, h, y_new, act, m)
     evaluate(P, ends, anchor, nstate, tstate, t + h, y_new, loc, gravity, K[FSAL5], ws[WS_LAM_END], ws)
-    return dopri5.error_norm(y, y_new, K, h, rtol, atol, n_ctrl)
+    return dopri5.error_norm_on(y, y_new, K, h, rtol, atol, n_ctrl, act, m)
 
 
 @njit(cache=True, _nrt=False)
 def _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, h, loc, gravity, K, F, ws):
     work = ws[WS_WORK]
+    act = ws[WS_ACT]
+    m = ws[WS_N_ACT][0]
     for j in range(dop853.N_EXTRA):
-        dop853.extra_stage_input(y, K, h, j, work)
+        dop853.extra_stage_input_on(y, K, h, j, work, act, m)
         _rhs(P, ends, anchor, nstate, tstate, t + dop853.C_EXTRA[j] * h, work, loc, gravity,
              K[dop853.FSAL + 1 + j], ws)
-    dop853.prepare_dense(y, y_new, K, h, F)
+    dop853.prepare_dense_on(y, y_new, K, h, F, act, m)
 
 
 @njit(cache=True)
@@ -349,6 +404,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
     lam_sel = np.zeros(nz)
     extra = np.zeros(nz)
     ws = new_workspace(n)
+    moving, n_moving = ws[WS_ACT], ws[WS_N_ACT]  # (_moving fills them before every step)
     n_grid = int(math.floor(t_end / save_dt + 1e-9)) + 1
     cap = n_grid + 2 * max_events + 4
     ncol = 1 + N_BLOCK_COLS * n + N_IFACE_COLS * n + N_TAIL
@@ -520,6 +576,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
         if not k0_ok:
             _rhs(P, ends, anchor, nstate, tstate, t, y, loc, gravity, K[0], ws)
             k0_ok = True
+        _moving(P, nstate, tstate, y, ws)
         if low_order:
             err = _step5(P, ends, anchor, nstate, tstate, t, y, hs, loc, gravity, K, y_new, rtol, atol, n_ctrl, ws)
             exponent = -0.2
@@ -537,7 +594,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
         # and comes back within the step (a brief slip of a sine pulse's crest): the guards are
         # sampled at N_SUB interior points of the dense output
         if low_order:
-            dopri5.prepare_dense_nested(y, K, hs, F)
+            dopri5.prepare_dense_nested_on(y, K, hs, F, moving, n_moving[0])
         else:
             _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, hs, loc, gravity, K, F, ws)
         have_dense = True
@@ -553,7 +610,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 # the step's last stage left the contact forces at its end in ws[WS_LAM_END]
                 guards_from(P, ends, anchor, nstate, tstate, y_new, ws[WS_LAM_END], g1, held)
             else:
-                dop853.dense(y, F, x_hi, ym)
+                dop853.dense_on(y, F, x_hi, ym, moving, n_moving[0])
                 guards(P, ends, anchor, nstate, tstate, t + x_hi * hs, ym, loc, gravity, g1, held, ws)
             for j in range(ng):
                 if sub == 1 and j % N_GUARD_SLOTS == G_EDGE and g0[j] <= 0.0 and g1[j] < g0[j]:
@@ -581,7 +638,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                     opened = False
                     for probe in range(24):
                         xp *= 0.5
-                        dop853.dense(y, F, xp, ym)
+                        dop853.dense_on(y, F, xp, ym, moving, n_moving[0])
                         guards(P, ends, anchor, nstate, tstate, t + xp * hs, ym, loc, gravity, gm, held, ws)
                         if gm[j] > 0.0:
                             opened = True
@@ -710,7 +767,7 @@ def _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, h
         xm = (lo * ghi - hi * glo) / (ghi - glo)
         if not (lo < xm < hi):
             xm = 0.5 * (lo + hi)
-        dop853.dense(y, F, xm, ym)
+        dop853.dense_on(y, F, xm, ym, ws[WS_ACT], ws[WS_N_ACT][0])
         guards(P, ends, anchor, nstate, tstate, t + xm * hs, ym, loc, gravity, gm, held, ws)
         gv = gm[j]
         if gv > 0.0:
@@ -736,10 +793,10 @@ def _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, 
     a, b = lo, hi
     c = b - r * (b - a)
     d = a + r * (b - a)
-    dop853.dense(y, F, c, ym)
+    dop853.dense_on(y, F, c, ym, ws[WS_ACT], ws[WS_N_ACT][0])
     guards(P, ends, anchor, nstate, tstate, t + c * hs, ym, loc, gravity, gm, held, ws)
     fc = gm[j]
-    dop853.dense(y, F, d, ym)
+    dop853.dense_on(y, F, d, ym, ws[WS_ACT], ws[WS_N_ACT][0])
     guards(P, ends, anchor, nstate, tstate, t + d * hs, ym, loc, gravity, gm, held, ws)
     fd = gm[j]
     for it in range(80):
@@ -752,13 +809,13 @@ def _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, 
         if fc < fd:
             b, d, fd = d, c, fc
             c = b - r * (b - a)
-            dop853.dense(y, F, c, ym)
+            dop853.dense_on(y, F, c, ym, ws[WS_ACT], ws[WS_N_ACT][0])
             guards(P, ends, anchor, nstate, tstate, t + c * hs, ym, loc, gravity, gm, held, ws)
             fc = gm[j]
         else:
             a, c, fc = c, d, fd
             d = a + r * (b - a)
-            dop853.dense(y, F, d, ym)
+            dop853.dense_on(y, F, d, ym, ws[WS_ACT], ws[WS_N_ACT][0])
             guards(P, ends, anchor, nstate, tstate, t + d * hs, ym, loc, gravity, gm, held, ws)
             fd = gm[j]
     if fc < fd:
@@ -884,7 +941,7 @@ def _save_grid(P, ends, anchor, nstate, tstate, t, y, h, F, dense_ok, K, loc, gr
             continue
         x = (tg - t) / h if h > 0.0 else 1.0
         if dense_ok:
-            dop853.dense(y, F, x, ym)
+            dop853.dense_on(y, F, x, ym, ws[WS_ACT], ws[WS_N_ACT][0])
         else:
             src = y_end if x >= 1.0 else y
             for j in range(ym.shape[0]):
