@@ -110,6 +110,12 @@ MODULES: dict[str, list[str]] = {
     "stack/model.py": ["test_stack_config.py", "test_stack_engine.py", "test_input_errors.py"],
     "stack/simulate.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_design_stack.py", "test_report_stack.py"],
     "stack/timestepping.py": ["test_stack_timestepping.py"],
+    # The Runge–Kutta toolkits both cores share: their unit tests compile small drivers of their
+    # own (against SciPy's steps, the bitwise partial steps, the root searches on built polynomials),
+    # so a mutant costs seconds of compilation, not the solver's minutes.
+    "integrators/dop853.py": ["test_partial_steps.py", "test_dop853.py", "test_compiled_root_finders.py",
+                              "test_dopri5.py"],
+    "integrators/dopri5.py": ["test_partial_steps.py", "test_dopri5.py"],
 }
 
 # One meaningful mutant per site, as mutmut makes, instead of cosmic-ray's every-operator-to-every-
