@@ -190,6 +190,20 @@ def test_energy_balance_and_dissipation():
     assert np.all(np.diff(r.friction_loss) >= -1e-9 * scale)  # friction never does positive work
 
 
+def test_the_relative_energy_error_of_a_light_stack_is_reported():
+    """The same stack 1000 times lighter (0.3 and 0.1 kg): the same motion, and a ledger whose
+    scale is 0.08 J, below 1 J. The summary still reports its worst imbalance over that scale
+    (a rule that took a scale below 1 J for no motion read 0 here: mutant 4db44063)."""
+    fr = Friction(static=0.3, kinetic=0.25)
+    stack = Stack(blocks=(Block(width=0.8, height=0.5, mass=0.3), Block(width=0.3, height=1.2, mass=0.1)),
+                  interfaces=(Interface(friction=fr), Interface()))
+    r = simulate_stack(stack, rocking.SinePulse(amplitude=3.5, frequency=1.0))
+    scale = np.max(np.abs(r.input_work)) + np.max(np.abs(r.energy - r.initial_energy))
+    worst = np.max(np.abs(r.energy - r.initial_energy - r.input_work + r.friction_loss + r.impact_loss))
+    assert 0.01 < scale < 1.0 and worst > 0.0
+    assert r.summary()["energy_balance_error"] == pytest.approx(worst / scale, rel=1e-12)
+
+
 def test_mirror_symmetry():
     stack = _pedestal_and_statue(Friction(static=0.3, kinetic=0.25))
     a = simulate_stack(stack, rocking.SinePulse(amplitude=3.5, frequency=1.0))
