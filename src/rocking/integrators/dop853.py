@@ -280,6 +280,20 @@ for _arr in (EXTRA_COLS, EXTRA_VALS, D_COLS, D_VALS):
 del _arr
 
 
+# Each step operation is a loop over the components of one per-component kernel, so that the
+# variants on part of the state (at the end of this module) do the same arithmetic in the same order.
+
+
+@njit(cache=True, inline="always")
+def _stage_input_at(y, K, h, stage, out, j):
+    acc = 0.0
+    for k in range(stage):
+        a = A[stage, k]
+        if a != 0.0:
+            acc += a * K[k, j]
+    out[j] = y[j] + h * acc
+
+
 @njit(cache=True, inline="always")
 def stage_input(y, K, h, stage, out):
     """State at which stage ``stage`` (1…11) is evaluated: y + h·Σ_{k<stage} A[stage, k]·K[k].
@@ -288,24 +302,43 @@ def stage_input(y, K, h, stage, out):
     stage 11 it calls :func:`advance` and evaluates K[12] at (t + h, y_new).
     """
     for j in range(y.shape[0]):
-        acc = 0.0
-        for k in range(stage):
-            a = A[stage, k]
-            if a != 0.0:
-                acc += a * K[k, j]
-        out[j] = y[j] + h * acc
+        _stage_input_at(y, K, h, stage, out, j)
+
+
+@njit(cache=True, inline="always")
+def _advance_at(y, K, h, y_new, j):
+    acc = 0.0
+    for k in range(N_STAGES):
+        b = B[k]
+        if b != 0.0:
+            acc += b * K[k, j]
+    y_new[j] = y[j] + h * acc
 
 
 @njit(cache=True, inline="always")
 def advance(y, K, h, y_new):
     """8th-order solution y + h·Σ_k B[k]·K[k] (k = 0…11) into ``y_new``."""
     for j in range(y.shape[0]):
-        acc = 0.0
-        for k in range(N_STAGES):
-            b = B[k]
-            if b != 0.0:
-                acc += b * K[k, j]
-        y_new[j] = y[j] + h * acc
+        _advance_at(y, K, h, y_new, j)
+
+
+@njit(cache=True, inline="always")
+def _error_terms_at(y, y_new, K, rtol, atol, j):
+    """Component ``j``'s scaled 5th- and 3rd-order error estimates (e5, e3) of :func:`error_norm`."""
+    e5 = 0.0
+    e3 = 0.0
+    for k in range(N_STAGES):
+        e5 += E5[k] * K[k, j]
+        e3 += E3[k] * K[k, j]
+    scale = atol + rtol * max(abs(y[j]), abs(y_new[j]))
+    return e5 / scale, e3 / scale
+
+
+@njit(cache=True, inline="always")
+def _combined_norm(s5, s3, h, n_controlled):
+    if s5 == 0.0 and s3 == 0.0:
+        return 0.0
+    return abs(h) * s5 / np.sqrt((s5 + 0.01 * s3) * n_controlled)
 
 
 @njit(cache=True, inline="always")
@@ -319,19 +352,18 @@ def error_norm(y, y_new, K, h, rtol, atol, n_controlled):
     s5 = 0.0
     s3 = 0.0
     for j in range(n_controlled):
-        e5 = 0.0
-        e3 = 0.0
-        for k in range(N_STAGES):
-            e5 += E5[k] * K[k, j]
-            e3 += E3[k] * K[k, j]
-        scale = atol + rtol * max(abs(y[j]), abs(y_new[j]))
-        e5 /= scale
-        e3 /= scale
+        e5, e3 = _error_terms_at(y, y_new, K, rtol, atol, j)
         s5 += e5 * e5
         s3 += e3 * e3
-    if s5 == 0.0 and s3 == 0.0:
-        return 0.0
-    return abs(h) * s5 / np.sqrt((s5 + 0.01 * s3) * n_controlled)
+    return _combined_norm(s5, s3, h, n_controlled)
+
+
+@njit(cache=True, inline="always")
+def _extra_stage_input_at(y, K, h, j, out, i):
+    acc = 0.0
+    for q in range(_EXTRA_NNZ):
+        acc += EXTRA_VALS[j, q] * K[EXTRA_COLS[j, q], i]
+    out[i] = y[i] + h * acc
 
 
 @njit(cache=True, _nrt=False)
@@ -343,10 +375,21 @@ def extra_stage_input(y, K, h, j, out):
     evaluates its right-hand side at (t + C_EXTRA[j]·h, out) into K[13 + j].
     """
     for i in range(y.shape[0]):
+        _extra_stage_input_at(y, K, h, j, out, i)
+
+
+@njit(cache=True, inline="always")
+def _prepare_dense_at(y, y_new, K, h, F, j):
+    dy = y_new[j] - y[j]
+    f0 = K[0, j]
+    F[0, j] = dy
+    F[1, j] = h * f0 - dy
+    F[2, j] = 2.0 * dy - h * (K[FSAL, j] + f0)
+    for i in range(INTERPOLATOR_POWER - 3):
         acc = 0.0
-        for q in range(_EXTRA_NNZ):
-            acc += EXTRA_VALS[j, q] * K[EXTRA_COLS[j, q], i]
-        out[i] = y[i] + h * acc
+        for q in range(D_COLS.shape[0]):
+            acc += D_VALS[i, q] * K[D_COLS[q], j]
+        F[3 + i, j] = h * acc
 
 
 @njit(cache=True, _nrt=False)
@@ -358,16 +401,7 @@ def prepare_dense(y, y_new, K, h, F):
     F[3 + i] = h·Σ_k D[i, k]·K[k], with Δy = y_new − y, f₀ = K[0], f₁ = K[12].
     """
     for j in range(y.shape[0]):
-        dy = y_new[j] - y[j]
-        f0 = K[0, j]
-        F[0, j] = dy
-        F[1, j] = h * f0 - dy
-        F[2, j] = 2.0 * dy - h * (K[FSAL, j] + f0)
-        for i in range(INTERPOLATOR_POWER - 3):
-            acc = 0.0
-            for q in range(D_COLS.shape[0]):
-                acc += D_VALS[i, q] * K[D_COLS[q], j]
-            F[3 + i, j] = h * acc
+        _prepare_dense_at(y, y_new, K, h, F, j)
 
 
 @njit(cache=True, _nrt=False)
@@ -454,22 +488,23 @@ def dense_sum_root(y, F, first, stride, count, f_lo, f_hi, x_hi):
 
 
 @njit(cache=True, inline="always")
+def hold_still(y, out, act, m):
+    """out = y + 0.0 on the components act[m:], those a mode holds still: what the full sums give
+    them, their rows of K being zero."""
+    for q in range(m, act.shape[0]):
+        j = act[q]
+        out[j] = y[j] + 0.0
+
+
+@njit(cache=True, inline="always")
 def stage_input_on(y, K, h, stage, out, act, m):
     """:func:`stage_input` computed on the components act[:m] only (see above)."""
     if m == act.shape[0]:  # every component moves: no indirection
         stage_input(y, K, h, stage, out)
         return
     for q in range(m):
-        j = act[q]
-        acc = 0.0
-        for k in range(stage):
-            a = A[stage, k]
-            if a != 0.0:
-                acc += a * K[k, j]
-        out[j] = y[j] + h * acc
-    for q in range(m, act.shape[0]):
-        j = act[q]
-        out[j] = y[j] + 0.0
+        _stage_input_at(y, K, h, stage, out, act[q])
+    hold_still(y, out, act, m)
 
 
 @njit(cache=True, inline="always")
@@ -479,16 +514,8 @@ def advance_on(y, K, h, y_new, act, m):
         advance(y, K, h, y_new)
         return
     for q in range(m):
-        j = act[q]
-        acc = 0.0
-        for k in range(N_STAGES):
-            b = B[k]
-            if b != 0.0:
-                acc += b * K[k, j]
-        y_new[j] = y[j] + h * acc
-    for q in range(m, act.shape[0]):
-        j = act[q]
-        y_new[j] = y[j] + 0.0
+        _advance_at(y, K, h, y_new, act[q])
+    hold_still(y, y_new, act, m)
 
 
 @njit(cache=True, inline="always")
@@ -503,19 +530,10 @@ def error_norm_on(y, y_new, K, h, rtol, atol, n_controlled, act, m):
         j = act[q]
         if j >= n_controlled:
             continue
-        e5 = 0.0
-        e3 = 0.0
-        for k in range(N_STAGES):
-            e5 += E5[k] * K[k, j]
-            e3 += E3[k] * K[k, j]
-        scale = atol + rtol * max(abs(y[j]), abs(y_new[j]))
-        e5 /= scale
-        e3 /= scale
+        e5, e3 = _error_terms_at(y, y_new, K, rtol, atol, j)
         s5 += e5 * e5
         s3 += e3 * e3
-    if s5 == 0.0 and s3 == 0.0:
-        return 0.0
-    return abs(h) * s5 / np.sqrt((s5 + 0.01 * s3) * n_controlled)
+    return _combined_norm(s5, s3, h, n_controlled)
 
 
 @njit(cache=True, _nrt=False)
@@ -525,14 +543,8 @@ def extra_stage_input_on(y, K, h, j, out, act, m):
         extra_stage_input(y, K, h, j, out)
         return
     for q in range(m):
-        i = act[q]
-        acc = 0.0
-        for r in range(_EXTRA_NNZ):
-            acc += EXTRA_VALS[j, r] * K[EXTRA_COLS[j, r], i]
-        out[i] = y[i] + h * acc
-    for q in range(m, act.shape[0]):
-        i = act[q]
-        out[i] = y[i] + 0.0
+        _extra_stage_input_at(y, K, h, j, out, act[q])
+    hold_still(y, out, act, m)
 
 
 @njit(cache=True, _nrt=False)
@@ -544,17 +556,7 @@ def prepare_dense_on(y, y_new, K, h, F, act, m):
         prepare_dense(y, y_new, K, h, F)
         return
     for q in range(m):
-        j = act[q]
-        dy = y_new[j] - y[j]
-        f0 = K[0, j]
-        F[0, j] = dy
-        F[1, j] = h * f0 - dy
-        F[2, j] = 2.0 * dy - h * (K[FSAL, j] + f0)
-        for i in range(INTERPOLATOR_POWER - 3):
-            acc = 0.0
-            for r in range(D_COLS.shape[0]):
-                acc += D_VALS[i, r] * K[D_COLS[r], j]
-            F[3 + i, j] = h * acc
+        _prepare_dense_at(y, y_new, K, h, F, act[q])
     for q in range(m, act.shape[0]):
         j = act[q]
         for i in range(INTERPOLATOR_POWER):
@@ -564,7 +566,9 @@ def prepare_dense_on(y, y_new, K, h, F, act, m):
 @njit(cache=True, _nrt=False)
 def dense_on(y, F, x, out, act, m):
     """:func:`dense` computed on the components act[:m] only; the others get y + 0.0, which is
-    what :func:`dense` gives them from the zero coefficients of :func:`prepare_dense_on`."""
+    what :func:`dense` gives them from the zero coefficients of :func:`prepare_dense_on`.
+
+    Row by row across the moving components, as :func:`dense` and for the same reason."""
     if m == act.shape[0]:  # every component moves: no indirection
         dense(y, F, x, out)
         return
@@ -582,6 +586,4 @@ def dense_on(y, F, x, out, act, m):
     for q in range(m):
         j = act[q]
         out[j] += y[j]
-    for q in range(m, act.shape[0]):
-        j = act[q]
-        out[j] = y[j] + 0.0
+    hold_still(y, out, act, m)

@@ -10,6 +10,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from .dop853 import hold_still
+
 C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0])
 A = np.array(
     [
@@ -38,6 +40,18 @@ P = np.array(
 )
 
 
+# As in dop853.py: each step operation loops over one per-component kernel, which the variants on
+# part of the state share.
+
+
+@njit(cache=True, inline="always")
+def _stage_input_at(y, K, h, stage, out, j):
+    acc = 0.0
+    for k in range(stage):
+        acc += A[stage, k] * K[k, j]
+    out[j] = y[j] + h * acc
+
+
 @njit(cache=True, _nrt=False)
 def stage_input(y, K, h, stage, out):
     """State at which stage ``stage`` (1…5) is evaluated: y + h·Σ_k A[stage, k]·K[k].
@@ -48,20 +62,32 @@ def stage_input(y, K, h, stage, out):
     receives another compiled function as an argument.)
     """
     for j in range(y.shape[0]):
-        acc = 0.0
-        for k in range(stage):
-            acc += A[stage, k] * K[k, j]
-        out[j] = y[j] + h * acc
+        _stage_input_at(y, K, h, stage, out, j)
+
+
+@njit(cache=True, inline="always")
+def _advance_at(y, K, h, y_new, j):
+    acc = 0.0
+    for k in range(6):
+        acc += BW[k] * K[k, j]
+    y_new[j] = y[j] + h * acc
 
 
 @njit(cache=True, inline="always")
 def advance(y, K, h, y_new):
     """5th-order solution y + h·Σ b_k K[k] into ``y_new``."""
     for j in range(y.shape[0]):
-        acc = 0.0
-        for k in range(6):
-            acc += BW[k] * K[k, j]
-        y_new[j] = y[j] + h * acc
+        _advance_at(y, K, h, y_new, j)
+
+
+@njit(cache=True, inline="always")
+def _error_term_at(y, y_new, K, h, rtol, atol, j):
+    """Component ``j``'s squared scaled error (h·e/scale)² of :func:`error_norm`."""
+    e = 0.0
+    for k in range(7):
+        e += E[k] * K[k, j]
+    scale = atol + rtol * max(abs(y[j]), abs(y_new[j]))
+    return (h * e / scale) ** 2
 
 
 @njit(cache=True, inline="always")
@@ -69,12 +95,31 @@ def error_norm(y, y_new, K, h, rtol, atol, n_controlled):
     """RMS of the local error estimate scaled by atol + rtol·max(|y|, |y_new|)."""
     total = 0.0
     for j in range(n_controlled):
-        e = 0.0
-        for k in range(7):
-            e += E[k] * K[k, j]
-        scale = atol + rtol * max(abs(y[j]), abs(y_new[j]))
-        total += (h * e / scale) ** 2
+        total += _error_term_at(y, y_new, K, h, rtol, atol, j)
     return np.sqrt(total / n_controlled)
+
+
+@njit(cache=True, inline="always")
+def _prepare_dense_nested_at(K, h, F, j):
+    c1 = 0.0
+    c2 = 0.0
+    c3 = 0.0
+    c4 = 0.0
+    for k in range(7):
+        c1 += K[k, j] * P[k, 0]
+        c2 += K[k, j] * P[k, 1]
+        c3 += K[k, j] * P[k, 2]
+        c4 += K[k, j] * P[k, 3]
+    c1 *= h
+    c2 *= h
+    c3 *= h
+    c4 *= h
+    F[0, j] = c1 + c2 + c3 + c4
+    F[1, j] = -c2 - c3 - c4
+    F[2, j] = -c3 - 2.0 * c4
+    F[3, j] = c4
+    for k in range(4, F.shape[0]):
+        F[k, j] = 0.0
 
 
 @njit(cache=True, _nrt=False)
@@ -86,25 +131,7 @@ def prepare_dense_nested(y, K, h, F):
     F2 = −c3 − 2c4, F1 = −c2 − c3 − c4 and F0 = c1 + c2 + c3 + c4.
     """
     for j in range(y.shape[0]):
-        c1 = 0.0
-        c2 = 0.0
-        c3 = 0.0
-        c4 = 0.0
-        for k in range(7):
-            c1 += K[k, j] * P[k, 0]
-            c2 += K[k, j] * P[k, 1]
-            c3 += K[k, j] * P[k, 2]
-            c4 += K[k, j] * P[k, 3]
-        c1 *= h
-        c2 *= h
-        c3 *= h
-        c4 *= h
-        F[0, j] = c1 + c2 + c3 + c4
-        F[1, j] = -c2 - c3 - c4
-        F[2, j] = -c3 - 2.0 * c4
-        F[3, j] = c4
-        for k in range(4, F.shape[0]):
-            F[k, j] = 0.0
+        _prepare_dense_nested_at(K, h, F, j)
 
 
 # --- The same steps on part of the state (see the note in dop853.py) -------------------------
@@ -117,14 +144,8 @@ def stage_input_on(y, K, h, stage, out, act, m):
         stage_input(y, K, h, stage, out)
         return
     for q in range(m):
-        j = act[q]
-        acc = 0.0
-        for k in range(stage):
-            acc += A[stage, k] * K[k, j]
-        out[j] = y[j] + h * acc
-    for q in range(m, act.shape[0]):
-        j = act[q]
-        out[j] = y[j] + 0.0
+        _stage_input_at(y, K, h, stage, out, act[q])
+    hold_still(y, out, act, m)
 
 
 @njit(cache=True, inline="always")
@@ -134,14 +155,8 @@ def advance_on(y, K, h, y_new, act, m):
         advance(y, K, h, y_new)
         return
     for q in range(m):
-        j = act[q]
-        acc = 0.0
-        for k in range(6):
-            acc += BW[k] * K[k, j]
-        y_new[j] = y[j] + h * acc
-    for q in range(m, act.shape[0]):
-        j = act[q]
-        y_new[j] = y[j] + 0.0
+        _advance_at(y, K, h, y_new, act[q])
+    hold_still(y, y_new, act, m)
 
 
 @njit(cache=True, inline="always")
@@ -152,13 +167,8 @@ def error_norm_on(y, y_new, K, h, rtol, atol, n_controlled, act, m):
     total = 0.0
     for q in range(m):
         j = act[q]
-        if j >= n_controlled:
-            continue
-        e = 0.0
-        for k in range(7):
-            e += E[k] * K[k, j]
-        scale = atol + rtol * max(abs(y[j]), abs(y_new[j]))
-        total += (h * e / scale) ** 2
+        if j < n_controlled:
+            total += _error_term_at(y, y_new, K, h, rtol, atol, j)
     return np.sqrt(total / n_controlled)
 
 
@@ -169,26 +179,7 @@ def prepare_dense_nested_on(y, K, h, F, act, m):
         prepare_dense_nested(y, K, h, F)
         return
     for q in range(m):
-        j = act[q]
-        c1 = 0.0
-        c2 = 0.0
-        c3 = 0.0
-        c4 = 0.0
-        for k in range(7):
-            c1 += K[k, j] * P[k, 0]
-            c2 += K[k, j] * P[k, 1]
-            c3 += K[k, j] * P[k, 2]
-            c4 += K[k, j] * P[k, 3]
-        c1 *= h
-        c2 *= h
-        c3 *= h
-        c4 *= h
-        F[0, j] = c1 + c2 + c3 + c4
-        F[1, j] = -c2 - c3 - c4
-        F[2, j] = -c3 - 2.0 * c4
-        F[3, j] = c4
-        for k in range(4, F.shape[0]):
-            F[k, j] = 0.0
+        _prepare_dense_nested_at(K, h, F, act[q])
     for q in range(m, act.shape[0]):
         j = act[q]
         for k in range(F.shape[0]):
