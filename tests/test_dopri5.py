@@ -42,6 +42,22 @@ def one_step(t, y, h):
     return y_new, K, F
 
 
+def test_tableau_is_scipy_rk45s_to_the_bit():
+    """Every coefficient is Dormand & Prince's as scipy's RK45 holds it, the zeros that the stage
+    loops never read included: the method is explicit (A strictly lower triangular, C[0] = 0), which
+    is what lets ``stage_input`` sum over the earlier stages only."""
+    assert np.array_equal(dopri5.C, RK45.C)
+    assert np.array_equal(dopri5.A, RK45.A)
+    assert np.array_equal(dopri5.BW, RK45.B)
+    assert np.array_equal(dopri5.E, RK45.E)
+    assert np.array_equal(dopri5.P, RK45.P)
+    # Independently of scipy: explicit, consistent (row sums are the nodes), the weights sum to 1
+    # and the error weights to 0 (1e-15: sums of a few O(1) fractions).
+    assert dopri5.C[0] == 0.0 and np.array_equal(np.tril(dopri5.A, -1), dopri5.A)
+    np.testing.assert_allclose(dopri5.A.sum(axis=1), dopri5.C, rtol=0, atol=1e-15)
+    assert dopri5.BW.sum() == pytest.approx(1.0, abs=1e-15) and abs(dopri5.E.sum()) < 1e-15
+
+
 @pytest.mark.parametrize("h", [0.4, 0.05])
 def test_step_error_norm_and_dense_output_match_scipy_rk45(h):
     t0, y0 = 0.3, np.array([1.1, -0.2])
