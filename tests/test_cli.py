@@ -384,6 +384,26 @@ def test_help_shows_flags_as_flags(command):
     assert "<bool>" not in done.stdout and "--help" in done.stdout
 
 
+def test_help_reads_as_written():
+    """Help text as its docstring says it: square brackets kept (rich took ``[[blocks]]`` for
+    markup and showed "[]"), and a paragraph broken where the terminal ends, not where the source
+    line did ("write one figure per" ended a line of the command list)."""
+    env = dict(os.environ, COLUMNS="200", TERM="dumb")
+
+    def help_of(*command):
+        done = subprocess.run([sys.executable, "-m", "rocking.cli", *command, "--help"], capture_output=True,
+                              text=True, env=env, timeout=120)
+        assert done.returncode == 0, done.stderr
+        return done.stdout
+
+    listing = help_of()
+    assert "write one figure per case (paper_fig_<case>.png" in listing
+    assert "run, and see the verdict, animation and plots" in listing
+    design = help_of("design")
+    assert "(or a [[blocks]] file) both faces are designed on the stack engine" in design
+    assert "'local[:N]'" in design and "[]" not in design
+
+
 def test_paper_takes_o_for_out():
     env = dict(os.environ, COLUMNS="120", TERM="dumb")
     done = subprocess.run([sys.executable, "-m", "rocking.cli", "paper", "--help"], capture_output=True, text=True,

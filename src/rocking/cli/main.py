@@ -28,6 +28,7 @@ from typing import Annotated, Any
 
 import typer
 from rich.console import Console
+from rich.markup import escape as rich_escape
 from typer._click import exceptions as click_exceptions  # typer vendors click
 from typer._click import utils as click_utils
 
@@ -314,9 +315,25 @@ def _interrupted(exc: BaseException) -> int:
     return exit_code(cause)
 
 
+def _as_help(text: str | None) -> str | None:
+    """A docstring or help string as rich shows it right: each paragraph on one line (rich wraps
+    it to the terminal; a line break kept from the source shows mid-sentence) and square brackets
+    escaped (``[[blocks]]`` is a TOML table, not rich markup: unescaped, it showed as "[]")."""
+    if not text:
+        return text
+    paragraphs = (" ".join(p.split()) for p in text.split("\n\n"))
+    return rich_escape("\n\n".join(p for p in paragraphs if p))
+
+
 @lru_cache(maxsize=1)
 def _command() -> Any:
-    return typer.main.get_command(app)
+    command = typer.main.get_command(app)
+    for sub in [command, *getattr(command, "commands", {}).values()]:
+        sub.help = _as_help(sub.help)
+        for param in sub.params:
+            if getattr(param, "help", None):
+                param.help = _as_help(param.help)
+    return command
 
 
 def _invoke(args: list[str]) -> Any:
