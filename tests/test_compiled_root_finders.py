@@ -149,3 +149,17 @@ def test_dense_sum_root_finds_the_zero_of_a_sum_to_its_tolerance(root, bend, sig
     assert f(root) == pytest.approx(0.0, abs=1e-12)
     x = dop853.dense_sum_root(y0, F, 1, 3, 2, f(0.0), f(1.0), 1.0)
     assert x == pytest.approx(root, abs=1e-10)
+
+
+def test_dense_sum_root_takes_the_secant_step():
+    # Regula falsi lands on a straight line's zero at its first step: on y = −0.3 + x (one
+    # component, every higher coefficient zero) the chord from (0, −0.3) to (1, 0.7) meets zero at
+    # 0.3/1.0, and the dense output there is −0.3 + 0.3 = 0 exactly, so the search stops at once.
+    # Bisection alone (a broken secant falls back on it) ends 1e-11 off, at a dyadic midpoint.
+    # Tolerance 1e-15: a few ulps of 0.3.
+    F = np.zeros((dop853.INTERPOLATOR_POWER, 1))
+    F[0, 0] = 1.0
+    y0 = np.array([-0.3])
+    f_lo, f_hi = dop853.dense_sum(y0, F, 0.0, 0, 1, 1), dop853.dense_sum(y0, F, 1.0, 0, 1, 1)
+    assert (f_lo, f_hi) == (-0.3, 0.7)
+    assert dop853.dense_sum_root(y0, F, 0, 1, 1, f_lo, f_hi, 1.0) == pytest.approx(0.3, abs=1e-15)

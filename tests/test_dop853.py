@@ -286,6 +286,21 @@ def test_error_norm_equals_scipy_formula():
 # --- dense output accuracy -------------------------------------------------------------------
 
 
+def test_one_dense_component_and_sums_of_them_are_the_dense_output():
+    # dense_component does dense's arithmetic for one component, in the same order (y + the
+    # nested product), so the bits agree; dense_sum adds the components it names. Random
+    # coefficients of both signs over several scales, x across and at the ends of the step.
+    rng = np.random.default_rng(7)
+    y = rng.normal(size=9) * 10.0 ** rng.integers(-3, 3, size=9)
+    F = rng.normal(size=(d.INTERPOLATOR_POWER, 9)) * 10.0 ** rng.integers(-6, 1, size=(d.INTERPOLATOR_POWER, 9))
+    out = np.empty(9)
+    for x in [0.0, 1.0, *rng.uniform(0.0, 1.0, size=20)]:
+        d.dense(y, F, x, out)
+        for j in range(9):
+            assert d.dense_component(y, F, x, j) == out[j]
+        assert d.dense_sum(y, F, x, 2, 3, 3) == out[2] + out[5] + out[8]
+
+
 @pytest.mark.parametrize("name", PROBLEMS)
 def test_dense_output_interpolates_within_a_step(name):
     kind, y0, exact = PROBLEMS[name]
