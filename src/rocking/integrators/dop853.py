@@ -497,6 +497,16 @@ def hold_still(y, out, act, m):
 
 
 @njit(cache=True, inline="always")
+def interpolate_still(F, act, m):
+    """Zero interpolant coefficients (columns of F) for the components act[m:], which a mode holds
+    still: :func:`dense` then gives them y + 0.0, as it would from the full coefficients."""
+    for q in range(m, act.shape[0]):
+        j = act[q]
+        for i in range(F.shape[0]):
+            F[i, j] = 0.0
+
+
+@njit(cache=True, inline="always")
 def stage_input_on(y, K, h, stage, out, act, m):
     """:func:`stage_input` computed on the components act[:m] only (see above)."""
     if m == act.shape[0]:  # every component moves: no indirection
@@ -557,10 +567,7 @@ def prepare_dense_on(y, y_new, K, h, F, act, m):
         return
     for q in range(m):
         _prepare_dense_at(y, y_new, K, h, F, act[q])
-    for q in range(m, act.shape[0]):
-        j = act[q]
-        for i in range(INTERPOLATOR_POWER):
-            F[i, j] = 0.0
+    interpolate_still(F, act, m)
 
 
 @njit(cache=True, _nrt=False)

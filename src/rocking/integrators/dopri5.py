@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .dop853 import hold_still
+from .dop853 import hold_still, interpolate_still
 
 C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0])
 A = np.array(
@@ -180,7 +180,4 @@ def prepare_dense_nested_on(y, K, h, F, act, m):
         return
     for q in range(m):
         _prepare_dense_nested_at(K, h, F, act[q])
-    for q in range(m, act.shape[0]):
-        j = act[q]
-        for k in range(F.shape[0]):
-            F[k, j] = 0.0
+    interpolate_still(F, act, m)
