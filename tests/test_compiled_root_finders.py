@@ -163,3 +163,30 @@ def test_dense_sum_root_takes_the_secant_step():
     f_lo, f_hi = dop853.dense_sum(y0, F, 0.0, 0, 1, 1), dop853.dense_sum(y0, F, 1.0, 0, 1, 1)
     assert (f_lo, f_hi) == (-0.3, 0.7)
     assert dop853.dense_sum_root(y0, F, 0, 1, 1, f_lo, f_hi, 1.0) == pytest.approx(0.3, abs=1e-15)
+
+
+
+def test_dense_sum_root_halves_the_bracket_where_the_chord_rounds_onto_its_end():
+    # On y = s·(x − r)(1 + c·x), 3000 random parabolas with one zero r in [0, x_hi]: the chord
+    # lands within a few ulps of r, and about one search in eighty then finds its next chord
+    # rounded onto an end of the tiny bracket left (38 of these 3000). The search must halve
+    # that bracket there, not leave it: a midpoint written 0.5/(lo + hi) sent two of them out of
+    # [0, x_hi] (to 1.3 and 2.0). Tolerance: the documented 1e-10 of the step (the worst here is
+    # 4.9e-11, a bisection's last halving), and the answer must lie in [0, x_hi].
+    rng = np.random.default_rng(0)
+    F = np.zeros((dop853.INTERPOLATOR_POWER, 1))
+    worst = 0.0
+    for _ in range(3000):
+        r = float(rng.uniform(0.05, 0.9))
+        x_hi = float(rng.uniform(r + 1e-3, 1.0))
+        s = float(rng.choice([-1.0, 1.0]) * 10 ** rng.uniform(-3, 3))
+        c = float(rng.uniform(-0.9, 0.9))
+        # s(x − r)(1 + cx) = −sr + s(1 − cr + c)·x − sc·x(1 − x), the dense output's own form
+        F[0, 0], F[1, 0] = s * (1 - c * r + c), -s * c
+        y0 = np.array([-s * r])
+        f_lo, f_hi = dop853.dense_sum(y0, F, 0.0, 0, 1, 1), dop853.dense_sum(y0, F, x_hi, 0, 1, 1)
+        assert f_lo * f_hi < 0.0
+        x = dop853.dense_sum_root(y0, F, 0, 1, 1, f_lo, f_hi, x_hi)
+        assert 0.0 <= x <= x_hi, (r, s, c, x_hi, x)
+        worst = max(worst, abs(x - r))
+    assert worst <= 1e-10

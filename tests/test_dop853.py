@@ -169,6 +169,16 @@ def test_tableau_matches_scipy_and_is_consistent():
     assert abs(d.E3.sum()) < 1e-14 and abs(d.E5.sum()) < 1e-14
 
 
+def test_tables_are_read_only():
+    # Numba compiles the module's arrays into the machine code as constants; a write from Python
+    # would change what Python sees and not what the compiled steps use. So none can be written.
+    for name in ("C", "A", "B", "E3", "E5", "C_EXTRA", "A_EXTRA", "D", "EXTRA_COLS", "EXTRA_VALS", "D_COLS",
+                 "D_VALS"):
+        table = getattr(d, name)
+        with pytest.raises(ValueError, match="read-only"):
+            table.flat[0] = table.flat[0]
+
+
 # --- orders ----------------------------------------------------------------------------------
 
 

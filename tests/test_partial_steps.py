@@ -8,6 +8,8 @@ values and on their sign bits, on random states in which a random subset of comp
 zero (or −0.0) rows of K, and some y entries are ±0.0.
 """
 
+import itertools
+
 import numpy as np
 import pytest
 
@@ -58,9 +60,11 @@ def test_dop853_steps_on_the_moving_components_are_the_full_steps(seed):
     dop853.advance_on(y, K, h, part, act, m)
     assert _same(full, part)
     y_new = full
-    for n_ctrl in (n, n - 1):
-        e_full = dop853.error_norm(y, y_new, K, h, 1e-9, 1e-12, n_ctrl)
-        e_part = dop853.error_norm_on(y, y_new, K, h, 1e-9, 1e-12, n_ctrl, _sorted(act, m), m)
+    # (tolerances of 1: with 1e-9 the squared sums are ~1e18, and a sum started at 1.0 instead of
+    # 0.0 would round to the same value)
+    for (rtol, atol), n_ctrl in itertools.product(((1e-9, 1e-12), (1.0, 1.0)), (n, n - 1)):
+        e_full = dop853.error_norm(y, y_new, K, h, rtol, atol, n_ctrl)
+        e_part = dop853.error_norm_on(y, y_new, K, h, rtol, atol, n_ctrl, _sorted(act, m), m)
         assert e_full == e_part and (e_full > 0.0 or n_ctrl < n)
     for j in range(dop853.N_EXTRA):
         full, part = np.full(n, np.nan), np.full(n, np.nan)
@@ -96,9 +100,9 @@ def test_dopri5_steps_on_the_moving_components_are_the_full_steps(seed):
     dopri5.advance_on(y, K, h, part, act, m)
     assert _same(full, part)
     y_new = full
-    for n_ctrl in (n, n - 1):
-        e_full = dopri5.error_norm(y, y_new, K, h, 1e-9, 1e-12, n_ctrl)
-        e_part = dopri5.error_norm_on(y, y_new, K, h, 1e-9, 1e-12, n_ctrl, _sorted(act, m), m)
+    for (rtol, atol), n_ctrl in itertools.product(((1e-9, 1e-12), (1.0, 1.0)), (n, n - 1)):
+        e_full = dopri5.error_norm(y, y_new, K, h, rtol, atol, n_ctrl)
+        e_part = dopri5.error_norm_on(y, y_new, K, h, rtol, atol, n_ctrl, _sorted(act, m), m)
         assert e_full == e_part and (e_full > 0.0 or n_ctrl < n)
     F_full = np.full((7, n), np.nan)
     F_part = np.full((7, n), np.nan)
