@@ -156,13 +156,16 @@ def test_dense_sum_root_takes_the_secant_step():
     # component, every higher coefficient zero) the chord from (0, −0.3) to (1, 0.7) meets zero at
     # 0.3/1.0, and the dense output there is −0.3 + 0.3 = 0 exactly, so the search stops at once.
     # Bisection alone (a broken secant falls back on it) ends 1e-11 off, at a dyadic midpoint.
-    # Tolerance 1e-15: a few ulps of 0.3.
+    # Tolerance 1e-15: a few ulps of 0.3. The same on y = −1.5 + 5x, whose values at the ends
+    # differ by 5, not 1: a chord that multiplied by that difference instead of dividing by it
+    # met the first line's zero all the same (and, after one bisection, that of y = −0.6 + 2x).
     F = np.zeros((dop853.INTERPOLATOR_POWER, 1))
-    F[0, 0] = 1.0
-    y0 = np.array([-0.3])
-    f_lo, f_hi = dop853.dense_sum(y0, F, 0.0, 0, 1, 1), dop853.dense_sum(y0, F, 1.0, 0, 1, 1)
-    assert (f_lo, f_hi) == (-0.3, 0.7)
-    assert dop853.dense_sum_root(y0, F, 0, 1, 1, f_lo, f_hi, 1.0) == pytest.approx(0.3, abs=1e-15)
+    for y_start, slope in ((-0.3, 1.0), (-1.5, 5.0)):
+        F[0, 0] = slope
+        y0 = np.array([y_start])
+        f_lo, f_hi = dop853.dense_sum(y0, F, 0.0, 0, 1, 1), dop853.dense_sum(y0, F, 1.0, 0, 1, 1)
+        assert (f_lo, f_hi) == (y_start, y_start + slope)
+        assert dop853.dense_sum_root(y0, F, 0, 1, 1, f_lo, f_hi, 1.0) == pytest.approx(0.3, abs=1e-15)
 
 
 

@@ -291,6 +291,13 @@ def test_error_norm_equals_scipy_formula():
             assert d.error_norm(y, y_new, K, h, rtol, atol, m) == pytest.approx(theirs, rel=1e-13)
     zero = np.zeros((d.N_K, 2))
     assert d.error_norm(np.ones(2), np.ones(2), zero, 0.1, 1e-6, 1e-9, 2) == 0.0
+    # The 3rd-order estimate exactly zero, the 5th-order one not (K on two stages whose E3 terms
+    # cancel to the bit): the norm is |h|·‖e5‖/√n, as scipy's, not the 0 of two vanishing estimates.
+    K = np.zeros((d.N_K, 2))
+    K[5, :], K[7, :] = d.E3[7], -d.E3[5]
+    y = np.ones(2)
+    theirs = solver._estimate_error_norm(K[: d.N_STAGES + 1], 0.1, 1e-9 + 1e-6 * y)
+    assert theirs > 0.0 and d.error_norm(y, y, K, 0.1, 1e-6, 1e-9, 2) == pytest.approx(theirs, rel=1e-13)
 
 
 # --- dense output accuracy -------------------------------------------------------------------
