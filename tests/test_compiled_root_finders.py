@@ -168,7 +168,6 @@ def test_dense_sum_root_takes_the_secant_step():
         assert dop853.dense_sum_root(y0, F, 0, 1, 1, f_lo, f_hi, 1.0) == pytest.approx(0.3, abs=1e-15)
 
 
-
 def test_dense_sum_root_halves_the_bracket_where_the_chord_rounds_onto_its_end():
     # On y = s·(x − r)(1 + c·x), 3000 random parabolas with one zero r in [0, x_hi]: the chord
     # lands within a few ulps of r, and about one search in seventy then finds its next chord

@@ -21,7 +21,8 @@ def _rotate(phi, vx, vy):
     return c * vx + s * vy, -s * vx + c * vy
 
 
-def _expected(hu, hl, bu, bl, kind, x_e, a, phi, d):
+def _expected(hu, bu, kind, x_e, a, phi, d):
+    """x of the upper block's bottom corners (left, right) in the lower block's frame, m."""
     if kind == END_U:
         qx, qy = _rotate(phi, x_e, -hu)
         rx = a - qx  # centre of the upper block: (a, h_l + d) − R(φ)(x_e, −h_u)
@@ -54,7 +55,6 @@ def test_the_upper_blocks_corners_in_the_lower_blocks_frame():
         for k in range(n):
             e = anchor[k]
             got = corner_x(P, ends, anchor, k, z)
-            want = _expected(P[k, P_HU], P[k, P_HL], P[k, P_BU], P[k, P_BL], ends[k, e, 0], ends[k, e, 1],
-                             z[3 * k], z[3 * k + 1], z[3 * k + 2])
+            want = _expected(P[k, P_HU], P[k, P_BU], ends[k, e, 0], ends[k, e, 1], z[3 * k], z[3 * k + 1], z[3 * k + 2])
             worst = max(worst, abs(got[0] - want[0]), abs(got[1] - want[1]))
     assert worst <= 1e-13
