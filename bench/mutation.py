@@ -100,12 +100,15 @@ MODULES: dict[str, list[str]] = {
     "solver/warmup.py": ["test_compiled_bounds.py", "test_install.py", "test_cli.py"],
     "solver/__init__.py": ["test_install.py", "test_single_block_rocking.py"],
     # The stack engine (issue 11): its own tests first, then the cross-checks against the
-    # two-body solver and the Moreau–Jean solver, then the studies that read its summaries.
-    "stack/kinematics.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
+    # two-body solver and the Moreau–Jean solver, then the studies that read its summaries. The
+    # mode selection's own oracle (and the corners' closed form) come first: they compile the
+    # selection alone, ~45 s, where the engine's tests recompile the whole engine, ~15 min a
+    # mutant beside another worker.
+    "stack/kinematics.py": ["test_stack_corners.py", "test_stack_modes.py", "test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
     # lcp.py is plain Python read by the Moreau–Jean solver only: its oracle, then that solver's
     # own tests (the cross-check, 5 min a run, is left to `try`)
     "stack/lcp.py": ["test_lcp.py", "test_stack_timestepping.py"],
-    "stack/modes.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
+    "stack/modes.py": ["test_stack_corners.py", "test_stack_modes.py", "test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
     "stack/engine.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
     "stack/model.py": ["test_stack_config.py", "test_stack_engine.py", "test_input_errors.py"],
     "stack/simulate.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_design_stack.py", "test_report_stack.py"],
