@@ -179,6 +179,81 @@ def test_tables_are_read_only():
             table.flat[0] = table.flat[0]
 
 
+# The same step, dense output and error norms, as a script run both compiled (here) and in the
+# interpreter (a subprocess with NUMBA_DISABLE_JIT=1), on the pendulum, on all components and on
+# part of them (act = [1], the partial functions' indirection).
+_STEP_SCRIPT = """
+import math
+import numpy as np
+from rocking.integrators import dop853 as d
+
+
+def f(t, y, out):
+    out[0] = y[1]
+    out[1] = -math.sin(y[0])
+
+
+def run():
+    n, t, h = 2, 0.0, 0.1
+    y, y_new, work = np.array([1.0, 0.3]), np.zeros(n), np.zeros(n)
+    K = np.zeros((d.FSAL + 1 + d.N_EXTRA, n))
+    F = np.zeros((d.INTERPOLATOR_POWER, n))
+    f(t, y, K[0])
+    for stage in range(1, d.N_STAGES):
+        d.stage_input(y, K, h, stage, work)
+        f(t + d.C[stage] * h, work, K[stage])
+    d.advance(y, K, h, y_new)
+    f(t + h, y_new, K[d.FSAL])
+    for j in range(d.N_EXTRA):
+        d.extra_stage_input(y, K, h, j, work)
+        f(t + d.C_EXTRA[j] * h, work, K[d.FSAL + 1 + j])
+    d.prepare_dense(y, y_new, K, h, F)
+    out = {"y_new": y_new.copy(), "F": F.copy(), "norm": [d.error_norm(y, y_new, K, h, 1e-6, 1e-8, n)]}
+    for x in (0.3, 0.7):
+        d.dense(y, F, x, work)
+        out[f"dense {x}"] = work.copy()
+    act = np.array([1, 0])
+    part, F_part = np.zeros(n), np.zeros((d.INTERPOLATOR_POWER, n))
+    for stage in range(1, d.N_STAGES):
+        d.stage_input_on(y, K, h, stage, part, act, 1)
+        out[f"stage {stage} on"] = part.copy()
+    d.advance_on(y, K, h, part, act, 1)
+    out["advance on"] = part.copy()
+    out["norm on"] = [d.error_norm_on(y, y_new, K, h, 1e-6, 1e-8, n, act, 1)]
+    for j in range(d.N_EXTRA):
+        d.extra_stage_input_on(y, K, h, j, part, act, 1)
+        out[f"extra {j} on"] = part.copy()
+    d.prepare_dense_on(y, y_new, K, h, F_part, act, 1)
+    out["F on"] = F_part.copy()
+    d.dense_on(y, F_part, 0.3, part, act, 1)
+    out["dense on"] = part.copy()
+    return {key: np.asarray(v, dtype=float).tolist() for key, v in out.items()}
+"""
+
+
+def test_the_step_runs_uncompiled_with_every_index_checked():
+    """Compiled code checks no index: a loop one row too long (the interpolant's D rows run to
+    ``INTERPOLATOR_POWER + 3``) writes past the end of F, where nothing may notice. The
+    interpreter checks every one. So the same step runs both ways, and must agree to rounding
+    (the interpreter may round a sum differently from the compiled code: 1e-14 of the scale)."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    namespace = {}
+    exec(_STEP_SCRIPT, namespace)
+    compiled = namespace["run"]()
+    env = dict(os.environ, NUMBA_DISABLE_JIT="1")
+    proc = subprocess.run([sys.executable, "-c", _STEP_SCRIPT + "\nimport json\nprint(json.dumps(run()))"],
+                          env=env, capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    interpreted = json.loads(proc.stdout.strip().splitlines()[-1])
+    assert interpreted.keys() == compiled.keys()
+    for key in compiled:
+        np.testing.assert_allclose(interpreted[key], compiled[key], rtol=1e-14, atol=1e-15, err_msg=key)
+
+
 # --- orders ----------------------------------------------------------------------------------
 
 
