@@ -460,3 +460,69 @@ def test_the_rules_that_narrow_the_branches(level, options):
     samples = 150 if options is _vetoed else 60
     taken, changed = _compare(level, seed=3 + level, samples=samples, options=options, kinetic=(0.2, 0.6))
     assert changed >= 5 and sum(combo is not None for combo in taken) >= 0.8 * samples
+
+
+def test_the_kinematics_against_the_poses_written_here():
+    """rocking.stack.kinematics, which the selection builds on, against the same independent
+    geometry: the absolute poses, their velocities and acceleration maps (``forward``), the
+    mass matrix and forces, each end's gap and its rate and gradient, an anchor moved to the
+    other end, and the energies. Exact quantities to 1e-12 of their scale (complex step); the
+    velocity terms β to 1e-8 (central differences, error ~1e-10)."""
+    from rocking.stack.kinematics import (anchor_at, corner_positions, end_gap, end_gap_gradient, energy, forward,
+                                          kinetic_energy, mass_and_forces, new_frame)
+
+    rng = np.random.default_rng(21)
+    checked = 0
+    while checked < 60:
+        state = _random_state(rng, ACCELERATION)
+        if state is None:
+            continue
+        P, ends, anchor, _, z, zd, _ = state
+        n = P.shape[0]
+        z = z + rng.uniform(-0.05, 0.05, 3 * n)  # any pose: gaps open or shut, blocks turned
+        zd = rng.uniform(-1.0, 1.0, 3 * n)
+        ah, av = rng.uniform(-10.0, 10.0, 2)
+        A, beta, C, X, Xd, th, thd = new_frame(n)
+        forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, th, thd)
+        pose = lambda q: _poses(P, ends, anchor, q)  # noqa: E731
+        q, J, curv = pose(z), _jacobian(pose, z), _curvature(pose, z, zd)
+        qd = J @ zd
+        for k in range(n):
+            np.testing.assert_allclose([*X[k], th[k]], q[3 * k:3 * k + 3], rtol=0, atol=1e-12)
+            np.testing.assert_allclose([*Xd[k], thd[k]], qd[3 * k:3 * k + 3], rtol=0, atol=1e-12)
+            np.testing.assert_allclose(A[k], J[3 * k:3 * k + 2], rtol=0, atol=1e-12)
+            np.testing.assert_allclose(C[k], J[3 * k + 2], rtol=0, atol=1e-12)
+            np.testing.assert_allclose(beta[k], curv[3 * k:3 * k + 2], rtol=0, atol=1e-8)
+        np.testing.assert_allclose(corner_positions(P, ends, anchor, z), q.reshape(n, 3), rtol=0, atol=1e-12)
+        M, f = np.zeros((3 * n, 3 * n)), np.zeros(3 * n)
+        mass_and_forces(P, A, beta, C, ah, av, G, M, f)
+        W = np.concatenate([[P[k, P_MASS], P[k, P_MASS], P[k, P_INERTIA]] for k in range(n)])
+        F = np.concatenate([[-P[k, P_MASS] * ah, -P[k, P_MASS] * (G + av), 0.0] for k in range(n)])
+        M_want = J.T @ (W[:, None] * J)
+        np.testing.assert_allclose(M, M_want, rtol=0, atol=1e-12 * np.abs(M_want).max())
+        f_want = J.T @ (F - W * curv)
+        np.testing.assert_allclose(f, f_want, rtol=0, atol=1e-8 * np.abs(f_want).max())
+        kinetic = 0.5 * np.sum(W * qd ** 2)
+        assert abs(kinetic_energy(P, Xd, thd) - kinetic) <= 1e-12 * kinetic
+        potential = G * np.sum(P[:, P_MASS] * q[1::3])
+        assert abs(energy(P, X, Xd, thd, G) - kinetic - potential) <= 1e-12 * (kinetic + abs(potential))
+        for k in range(n):
+            for e in range(2):
+                gap = lambda qq, k=k, e=e: np.array([_contact(P, ends, anchor, k, qq, e)[0]])  # noqa: E731
+                grad = _jacobian(gap, z)[0]
+                g, g_rate = end_gap(P, ends, anchor, k, z, zd, e)
+                assert abs(g - gap(z)[0]) <= 1e-12 and abs(g_rate - grad @ zd) <= 1e-12
+                # (a gap depends on its own interface's coordinates only: the gradient is along those)
+                assert not np.any(np.delete(grad, np.s_[3 * k:3 * k + 3]))
+                np.testing.assert_allclose(end_gap_gradient(P, ends, anchor, k, z, e), grad[3 * k:3 * k + 3],
+                                           rtol=0, atol=1e-12)
+            # the other end as anchor: the same block pose and velocity in new coordinates
+            e_new = 1 - anchor[k]
+            a, d, ad, dd = anchor_at(P, ends, anchor, k, z, zd, e_new, ends[k, e_new, 0], ends[k, e_new, 1])
+            anchor2, z2, zd2 = anchor.copy(), z.copy(), zd.copy()
+            anchor2[k] = e_new
+            z2[3 * k], z2[3 * k + 2], zd2[3 * k], zd2[3 * k + 2] = a, d, ad, dd
+            np.testing.assert_allclose(_poses(P, ends, anchor2, z2), q, rtol=0, atol=1e-12)
+            np.testing.assert_allclose(_jacobian(lambda qq: _poses(P, ends, anchor2, qq), z2) @ zd2, qd,  # noqa: E731
+                                       rtol=0, atol=1e-12)
+        checked += 1
