@@ -387,6 +387,18 @@ def _compare(level, seed, samples, options, kinetic=(0.6, 1.0)):
                 got_n = {}
             for e, value in got_n.items():
                 assert abs(value - forces["N", k, e]) <= 1e-7 * scale, (k, e, value, forces["N", k, e])
+            # and its friction force (impulse), on a: the library's Λ_a is the force along the face
+            # the anchor's corner runs on, the oracle's T along the lower face (reversed for a
+            # lower block's corner, as σ)
+            if nst >= ROCK and P[k, P_CAN_SLIP] > 0.5:
+                contact = anchor[k] if nst == FLAT else (1 - anchor[k] if other else anchor[k])
+                if tst == 0:
+                    friction = forces["T", k, contact]
+                else:
+                    n_total = sum(v for (kind, kk, _), v in forces.items() if kind == "N" and kk == k)
+                    friction = -P[k, P_MU_K] * oracle.sigma(k, other, tst) * n_total
+                along = 1.0 if ends[k, contact, 0] == END_U else -1.0
+                assert abs(lam[i] - along * friction) <= 1e-7 * scale, (k, lam[i], friction)
         taken.append(combo)
     return taken, changed
 
@@ -526,3 +538,24 @@ def test_the_kinematics_against_the_poses_written_here():
             np.testing.assert_allclose(_jacobian(lambda qq: _poses(P, ends, anchor2, qq), z2) @ zd2, qd,  # noqa: E731
                                        rtol=0, atol=1e-12)
         checked += 1
+
+
+@pytest.mark.parametrize("n", [1, 2, 3])
+def test_a_stack_on_a_floor_falling_at_g_carries_no_force_and_stays_flat_and_stuck(n):
+    """With the floor falling at exactly g, every contact force of a stack at rest is zero, to the
+    bit: a tie at which flat and stuck (the most constrained branch, first) holds, as well as open.
+    The tolerances decide the tie in favour of contact (|T| = 0 ≤ μs·0 + tol)."""
+    blocks = tuple(Block(width=0.6 - 0.1 * k, height=0.5 + 0.2 * k, mass=50.0 + 10 * k) for k in range(n))
+    stack = Stack(blocks=blocks, interfaces=tuple(Interface(friction=Friction(static=0.5, kinetic=0.4))
+                                                  for _ in range(n)))
+    P, ends, anchor, z = pack(stack)
+    zd = np.zeros(3 * n)
+    geo = np.full(n, FLAT, dtype=np.int64)
+    nstate, tstate = np.zeros(n, dtype=np.int64), np.ones(n, dtype=np.int64)
+    x, lam = np.full(3 * n, np.nan), np.full(3 * n, np.nan)
+    tol_force = 1e-10 * np.sum(P[:, P_MASS]) * G
+    code = select_mode(ACCELERATION, P, ends, anchor, geo, z, zd, 0.0, -G, G, np.zeros(3 * n), nstate, tstate,
+                       -1, 0, tol_force, 1e-12, x, lam)
+    assert code == SELECT_OK
+    assert np.all(nstate == FLAT) and np.all(tstate == 0)
+    assert np.all(x == 0.0) and np.all(lam == 0.0)
