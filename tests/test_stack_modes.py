@@ -16,10 +16,12 @@ anchor, then on the other end, flat-slip ±, rock-slip, open; the ± in the sign
 the branch rocks on, so physically reversed on a lower block's corner).
 
 The two are compared on random stacks of one to three blocks in random states: the branch taken,
-the absolute accelerations of every block, and every closed end's normal force. Samples whose
-decision passes within 1e-6 (relative) of a condition's threshold are skipped, as are nearly
-singular contact problems: there the finite differences (~1e-10) could flip a decision. The
-tolerance on accelerations and forces, 1e-7 relative, is 1000 times the finite-difference error.
+the absolute accelerations of every block, every closed end's normal force and every closed
+interface's friction force. Samples whose decision passes within 1e-6 (relative) of a condition's
+threshold are skipped, as are nearly singular contact problems: there the finite differences
+(~1e-10) could flip a decision. The tolerance on accelerations and forces, 1e-7 relative, is 1000
+times the finite-difference error. Ties are checked apart, on a case where they are exact (a
+floor falling at g). The same geometry checks the kinematics the selection builds on.
 """
 
 import itertools
@@ -356,7 +358,7 @@ def _compare(level, seed, samples, options, kinetic=(0.6, 1.0)):
         nstate, tstate = np.zeros(n, dtype=np.int64), np.zeros(n, dtype=np.int64)
         x, lam = np.zeros(3 * n), np.zeros(3 * n)
         scale = np.sum(P[:, P_MASS]) * G
-        tol_force = 1e-10 * scale if level == ACCELERATION else 1e-10 * scale
+        tol_force = 1e-10 * scale  # the engine's tolerance (for impulses it scales with the energy instead)
         veto_k, veto_kind = veto if veto is not None else (-1, 0)
         code = select_mode(level, P, ends_l, anchor_l, geo, z_l, zd_l, ah, av, G, extra, nstate, tstate,
                            veto_k, veto_kind, tol_force, 1e-12, x, lam, force_flat, hold)
