@@ -31,7 +31,7 @@ import pytest
 
 from rocking.contact.friction import Friction
 from rocking.stack import Block, Interface, Stack
-from rocking.stack.kinematics import (END_U, P_CAN_SLIP, P_HL, P_HU, P_INERTIA, P_MASS, P_MU_K, P_MU_S,
+from rocking.stack.kinematics import (END_U, P_BU, P_CAN_SLIP, P_HL, P_HU, P_INERTIA, P_MASS, P_MU_K, P_MU_S,
                                       P_OFFSET)
 from rocking.stack.modes import ACCELERATION, FLAT, OPEN, ROCK, SELECT_NONE, SELECT_OK, VELOCITY, flat_forces, select_mode
 from rocking.stack.simulate import pack
@@ -441,7 +441,8 @@ def test_the_impact_branch_is_the_first_that_holds():
 
 def _vetoed(rng, oracle):
     """A veto of the branch the interface would take without one (its guard just fired): the
-    anchor's force (0) or the other end's (1) for a flat or rocking branch, the stick (2)."""
+    anchor's force (0) or the other end's (1) for a flat or rocking branch, the stick (2); now
+    and then a veto of another guard, which moves where the enumeration starts."""
     combo, _, _ = oracle.select()
     if combo in (None, "singular"):
         return None, False, -1
@@ -451,6 +452,8 @@ def _vetoed(rng, oracle):
     k = int(rng.choice(closed))
     nst, other, tst = combo[k]
     kinds = [2] if tst == 0 and rng.random() < 0.6 else ([0, 1] if nst == FLAT else [1 if other else 0])
+    if rng.random() < 0.3:
+        kinds = [0, 1, 2]  # or any guard: one that excludes other branches, not the one taken
     return (k, int(rng.choice(kinds))), False, -1
 
 
@@ -561,3 +564,52 @@ def test_a_stack_on_a_floor_falling_at_g_carries_no_force_and_stays_flat_and_stu
     assert code == SELECT_OK
     assert np.all(nstate == FLAT) and np.all(tstate == 0)
     assert np.all(x == 0.0) and np.all(lam == 0.0)
+
+
+def test_a_mode_solve_pivots_past_a_zero_diagonal():
+    """solve_mode_in on a slipping rocking interface whose folded row a (M_a + μk·σ·M_d) has a zero
+    diagonal entry (M_aa = 1, M_da = −2, μk = 0.5): the system is regular (det −0.165), and only a
+    row exchange solves it. Checked against numpy's solve of the reduced system."""
+    from rocking.stack.modes import solve_mode_in
+
+    P = np.zeros((1, 12))
+    P[0, P_CAN_SLIP], P[0, P_MU_K], P[0, P_MU_S] = 1.0, 0.5, 0.6
+    M = np.array([[1.0, 0.3, -2.0], [0.3, 2.0, 0.5], [-2.0, 0.5, 10.0]])
+    assert np.all(np.linalg.eigvalsh(M) > 0)
+    f = np.array([0.7, -1.1, 3.0])
+    x, lam = np.full(3, np.nan), np.full(3, np.nan)
+    scratch = (np.zeros(3, dtype=np.bool_), np.empty(3, dtype=np.int64), np.empty(3, dtype=np.int64),
+               np.empty((3, 3)), np.empty(3))
+    assert solve_mode_in(M, f, P, np.array([ROCK]), np.array([1]), x, lam, *scratch)
+    # free a and φ; the a row carries −μk·σ·Λ_d with Λ_d = (M z̈ − f)_d
+    K = np.array([[M[0, 0] + 0.5 * M[2, 0], M[0, 1] + 0.5 * M[2, 1]], [M[1, 0], M[1, 1]]])
+    assert K[0, 0] == 0.0
+    want = np.linalg.solve(K, [f[0] + 0.5 * f[2], f[1]])
+    np.testing.assert_allclose(x, [want[0], want[1], 0.0], rtol=1e-14, atol=1e-14)
+    lam_d = M[2] @ x - f[2]
+    np.testing.assert_allclose(lam, [-0.5 * lam_d, 0.0, lam_d], rtol=1e-13, atol=1e-13)
+
+
+def test_a_veto_of_the_anchors_force_decides_a_tie_for_the_other_corner():
+    """A flat block on the floor pushed towards +x a hair above its uplift threshold g·b/h (by 1e-11
+    relative): its anchor's (left end's) force is −1e-11 of the weight, within the tolerance, so
+    flat still holds, as does rocking on the other corner. Without a veto the most constrained
+    branch wins, flat; with the anchor's force vetoed (its guard has just fired), the block rocks
+    onto its other corner. That branch is the first tried, and the first whose pose moves an
+    anchor, so its equations are the first built (the selection builds them once per set of
+    moved anchors)."""
+    stack = Stack(blocks=(Block(width=0.4, height=1.2, mass=100.0),), interfaces=(Interface(),))
+    P, ends, anchor, z = pack(stack)
+    ah = -G * P[0, P_BU] / P[0, P_HU] * (1.0 + 1e-11)
+    tol_force = 1e-10 * P[0, P_MASS] * G
+    outcomes = []
+    for veto_k in (-1, 0):
+        ends_l, anchor_l, z_l, zd_l = ends.copy(), anchor.copy(), z.copy(), np.zeros(3)
+        nstate, tstate, x, lam = np.zeros(1, dtype=np.int64), np.zeros(1, dtype=np.int64), np.zeros(3), np.zeros(3)
+        code = select_mode(ACCELERATION, P, ends_l, anchor_l, np.array([FLAT]), z_l, zd_l, ah, 0.0, G, np.zeros(3),
+                           nstate, tstate, veto_k, 0, tol_force, 1e-12, x, lam)
+        assert code == SELECT_OK
+        outcomes.append((int(nstate[0]), int(anchor_l[0]), x[1]))
+    assert outcomes[0] == (FLAT, 0, 0.0)
+    # rocking on the right corner (clockwise, φ̈ > 0) at ~1e-11 of g/h: the tie's own size
+    assert outcomes[1][:2] == (ROCK, 1) and 0.0 < outcomes[1][2] < 1e-9
