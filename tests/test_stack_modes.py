@@ -613,3 +613,24 @@ def test_a_veto_of_the_anchors_force_decides_a_tie_for_the_other_corner():
     assert outcomes[0] == (FLAT, 0, 0.0)
     # rocking on the right corner (clockwise, φ̈ > 0) at ~1e-11 of g/h: the tie's own size
     assert outcomes[1][:2] == (ROCK, 1) and 0.0 < outcomes[1][2] < 1e-9
+
+
+def test_the_rest_rule_lands_the_floor_interface_whatever_the_others_pull():
+    """The rest rule after an impact (``force_flat``) lands one interface flat and keeps every other
+    in its normal state without looking at the signs of their impulses. Here the bottom block
+    lands on the floor (interface 0, ḋ = −0.1 m/s) while the top block, flat on it, is lifting
+    off (ḋ = +0.3 m/s): keeping it down takes a pulling impulse, and the rule accepts it."""
+    stack = Stack(blocks=(Block(width=0.8, height=0.5, mass=200.0), Block(width=0.3, height=0.9, mass=50.0)),
+                  interfaces=(Interface(), Interface()))
+    P, ends, anchor, z = pack(stack)
+    zd = np.array([0.0, 0.0, -0.1, 0.0, 0.0, 0.3])
+    geo = np.array([FLAT, FLAT])
+    oracle = Oracle(P, ends, anchor, geo, z, zd, 0.0, 0.0, VELOCITY, np.zeros(6))
+    combo, sol, _ = oracle.select(force_flat=0)
+    assert combo == ((FLAT, 0, 0), (FLAT, 0, 0))
+    assert sol[1]["N", 1, 0] + sol[1]["N", 1, 1] < -1.0  # the top interface pulls (N·s)
+    nstate, tstate, x, lam = np.zeros(2, dtype=np.int64), np.zeros(2, dtype=np.int64), np.zeros(6), np.zeros(6)
+    code = select_mode(VELOCITY, P, ends, anchor, geo, z, zd, 0.0, 0.0, G, np.zeros(6), nstate, tstate, -1, 0,
+                       1e-9, 1e-12, x, lam, 0)
+    assert code == SELECT_OK and list(nstate) == [FLAT, FLAT]
+    np.testing.assert_allclose(x, sol[0], rtol=0, atol=1e-9)
