@@ -33,7 +33,8 @@ from rocking.contact.friction import Friction
 from rocking.stack import Block, Interface, Stack
 from rocking.stack.kinematics import (END_U, P_BU, P_CAN_SLIP, P_HL, P_HU, P_INERTIA, P_MASS, P_MU_K, P_MU_S,
                                       P_OFFSET)
-from rocking.stack.modes import ACCELERATION, FLAT, OPEN, ROCK, SELECT_NONE, SELECT_OK, VELOCITY, flat_forces, select_mode
+from rocking.stack.modes import (ACCELERATION, FLAT, OPEN, ROCK, SELECT_NONE, SELECT_OK, VELOCITY, flat_forces,
+                                 select_mode)
 from rocking.stack.simulate import pack
 
 G = 9.80665
