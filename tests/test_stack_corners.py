@@ -34,34 +34,9 @@ def _expected(hu, bu, kind, x_e, a, phi, d):
     return rx + left, rx + right
 
 
-def test_the_upper_blocks_corners_in_the_lower_blocks_frame():
-    rng = np.random.default_rng(7)
-    n = 3
-    worst = 0.0
-    for _ in range(300):
-        P = np.zeros((n, 12))
-        P[:, P_HU] = rng.uniform(0.1, 1.0, n)
-        P[:, P_BU] = rng.uniform(0.05, 0.6, n)
-        P[1:, P_HL] = P[:-1, P_HU]
-        P[1:, P_BL] = P[:-1, P_BU]
-        P[0, P_BL] = 1e3  # the floor
-        ends = np.zeros((n, 2, 2))
-        anchor = rng.integers(0, 2, n).astype(np.int64)
-        for k in range(n):
-            for e, sign in ((0, -1.0), (1, 1.0)):
-                kind = END_L if (k > 0 and rng.random() < 0.5) else END_U
-                ends[k, e] = kind, sign * (P[k, P_BL] if kind == END_L else P[k, P_BU])
-        z = rng.uniform(-0.3, 0.3, 3 * n)  # every a, φ and d nonzero: gaps open, blocks below turned
-        for k in range(n):
-            e = anchor[k]
-            got = corner_x(P, ends, anchor, k, z)
-            want = _expected(P[k, P_HU], P[k, P_BU], ends[k, e, 0], ends[k, e, 1], z[3 * k], z[3 * k + 1], z[3 * k + 2])
-            worst = max(worst, abs(got[0] - want[0]), abs(got[1] - want[1]))
-    assert worst <= 1e-13
-
-
 def _random_poses(seed, count):
-    """Three-block stacks in random poses: (P, ends, anchor, z) with every a, φ and d nonzero."""
+    """Three-block stacks in random poses: (rng, P, ends, anchor, z), every a, φ and d nonzero (gaps
+    open, blocks below turned)."""
     rng = np.random.default_rng(seed)
     n = 3
     for _ in range(count):
@@ -78,6 +53,17 @@ def _random_poses(seed, count):
                 kind = END_L if (k > 0 and rng.random() < 0.5) else END_U
                 ends[k, e] = kind, sign * (P[k, P_BL] if kind == END_L else P[k, P_BU])
         yield rng, P, ends, anchor, rng.uniform(-0.3, 0.3, 3 * n)
+
+
+def test_the_upper_blocks_corners_in_the_lower_blocks_frame():
+    worst = 0.0
+    for _, P, ends, anchor, z in _random_poses(7, 300):
+        for k in range(3):
+            e = anchor[k]
+            got = corner_x(P, ends, anchor, k, z)
+            want = _expected(P[k, P_HU], P[k, P_BU], ends[k, e, 0], ends[k, e, 1], z[3 * k], z[3 * k + 1], z[3 * k + 2])
+            worst = max(worst, abs(got[0] - want[0]), abs(got[1] - want[1]))
+    assert worst <= 1e-13
 
 
 def _inner_ends(bu, bl, xl, xr, direction, tol):
