@@ -104,12 +104,17 @@ MODULES: dict[str, list[str]] = {
     # mode selection's own oracle (and the corners' closed form) come first: they compile the
     # selection alone, ~45 s, where the engine's tests recompile the whole engine, ~15 min a
     # mutant beside another worker.
-    "stack/kinematics.py": ["test_stack_corners.py", "test_stack_modes.py", "test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
+    "stack/kinematics.py": ["test_stack_corners.py", "test_stack_modes.py", "test_stack_engine_parts.py",
+                            "test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
     # lcp.py is plain Python read by the Moreau–Jean solver only: its oracle, then that solver's
     # own tests (the cross-check, 5 min a run, is left to `try`)
     "stack/lcp.py": ["test_lcp.py", "test_stack_timestepping.py"],
-    "stack/modes.py": ["test_stack_corners.py", "test_stack_modes.py", "test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
-    "stack/engine.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
+    "stack/modes.py": ["test_stack_corners.py", "test_stack_modes.py", "test_stack_engine_parts.py",
+                       "test_stack_engine.py", "test_stack_crosscheck.py", "test_stack_timestepping.py"],
+    # The engine's parts one at a time first (seconds: only the helpers a test calls compile),
+    # then whole runs (each recompiles the engine, ~8 min a mutant).
+    "stack/engine.py": ["test_stack_engine_parts.py", "test_stack_engine.py", "test_stack_crosscheck.py",
+                        "test_stack_timestepping.py"],
     "stack/model.py": ["test_stack_config.py", "test_stack_engine.py", "test_input_errors.py"],
     "stack/simulate.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_design_stack.py", "test_report_stack.py"],
     "stack/timestepping.py": ["test_stack_timestepping.py"],

@@ -1,0 +1,730 @@
+"""The parts of the stack engine (``rocking.stack.engine``) one at a time, against the independent
+contact problem of tests/oracles/stack_contact.py and against SciPy's integrators.
+
+The engine's own tests (tests/test_stack_engine.py) run whole simulations: a wrong guard, a
+wrong ledger term or a wrong index into the state shows there only as a changed trajectory, and
+only if a case happens to reach it. Here each compiled helper is called directly on random
+stacks of one to three blocks in random states:
+
+* the right-hand side of a mode: accelerations, contact forces and the energy ledger's rates;
+* the guards: contact forces, gaps, friction margins, slip rates, overturning, overlap and the
+  edge of the block below; the rest band that makes them affine in the floor's acceleration;
+* the components a step integrates, one DOP853 and one Dormand–Prince 5(4) step and the dense
+  output (against SciPy's ``DOP853`` and ``RK45``, which share no code with the engine);
+* Housner's ratio and the restitution couple, the projection of an impact onto a mode, the
+  energies and the energy allowance of an impact, the slip and slide direction, the saved rows,
+  the peaks found inside a step, and the classification of the guards.
+
+Tolerances: quantities the oracle gets exactly (complex step) to 1e-12 of their scale; those
+that need its velocity terms (central differences, error ~1e-10) to 1e-7, as in
+tests/test_stack_modes.py; the integrators to 1e-12 of the state's scale (both sum the same
+tableau in a different order).
+
+These tests compile only the helpers they call, so each takes seconds: they also make
+bench/mutation.py's run of ``stack/engine.py`` fast (a mutant they kill costs no compilation of
+the whole engine).
+"""
+
+import math
+
+import numpy as np
+import pytest
+from oracles.stack_contact import G, Oracle, contact, curvature, jacobian, poses, random_state, relative, rot
+from scipy.integrate import DOP853, RK45
+
+from rocking.contact.friction import Friction
+from rocking.excitation.signal import LOCAL_COSINE, LOCAL_LINEAR
+from rocking.integrators import dop853
+from rocking.stack import Block, Interface, Stack
+from rocking.stack import engine as E
+from rocking.stack.kinematics import (END_U, P_BL, P_BU, P_CAN_SLIP, P_HL, P_HU, P_INERTIA, P_MASS, P_MU_K, P_MU_S,
+                                      P_OFFSET, P_RESTITUTION, anchor_at)
+from rocking.stack.modes import ACCELERATION, FLAT, OPEN, ROCK, SELECT_OK, VELOCITY, flat_forces, select_mode
+from rocking.stack.simulate import pack
+
+
+def _friction(mu_s, mu_k):
+    return Friction(static=mu_s, kinetic=mu_k)
+
+
+# ---- random states in a mode --------------------------------------------------------------------
+def _state_in_a_mode(rng):
+    """A random stack in a random consistent state and the mode of that state: each interface in
+    the normal state of its geometry; a closed one that slips has tstate = the sign of ȧ, one at
+    rest any tstate (stuck, or starting to slip either way)."""
+    while True:
+        state = random_state(rng, ACCELERATION)
+        if state is not None:
+            break
+    P, ends, anchor, geo, z, zd, _ = state
+    n = P.shape[0]
+    nstate = geo.copy()
+    tstate = np.zeros(n, dtype=np.int64)
+    for k in range(n):
+        if nstate[k] >= ROCK and P[k, P_CAN_SLIP] > 0.5:
+            v = zd[3 * k]
+            tstate[k] = int(np.sign(v)) if v != 0.0 else int(rng.integers(-1, 2))
+    return P, ends, anchor, geo, nstate, tstate, z, zd
+
+
+def _combo(nstate, tstate):
+    return tuple((int(nstate[k]), 0, int(tstate[k])) for k in range(nstate.shape[0]))
+
+
+def _y(z, zd, ledger=(0.0, 0.0)):
+    return np.concatenate([z, zd, ledger])
+
+
+def _floor(ah, av):
+    """A piece table row of a floor moving at constant accelerations ah, av (m/s²)."""
+    return np.array([LOCAL_LINEAR, ah, 0.0, 0.0, 0.0, LOCAL_LINEAR, av, 0.0, 0.0, 0.0])
+
+
+def _harmonic_floor(a_h, w_h, p_h, a_v, w_v, p_v):
+    return np.array([LOCAL_COSINE, a_h, w_h, p_h, 0.0, LOCAL_COSINE, a_v, w_v, p_v, 0.0])
+
+
+def _evaluate(P, ends, anchor, nstate, tstate, z, zd, ah, av):
+    n = P.shape[0]
+    ws = E.new_workspace(n)
+    dy, lam = np.full(6 * n + 2, np.nan), np.full(3 * n, np.nan)
+    ok = E.evaluate_at(P, ends, anchor, nstate, tstate, ah, av, _y(z, zd), G, dy, lam, ws)
+    return ok, dy, lam
+
+
+def _oracle_forces(oracle, combo, k):
+    """(N per closed end, total N, friction along the lower face) of interface k in the oracle's
+    solution of ``combo``."""
+    zdd, forces = oracle.solve(combo)
+    normal = {e: v for (kind, kk, e), v in forces.items() if kind == "N" and kk == k}
+    nst, _, tst = combo[k]
+    total = sum(normal.values())
+    if nst >= ROCK and tst == 0:
+        friction = forces["T", k, oracle.anchor[k]]
+    elif nst >= ROCK:
+        friction = -oracle.P[k, P_MU_K] * oracle.sigma(k, 0, tst) * total
+    else:
+        friction = None
+    return normal, total, friction
+
+
+# ---- the right-hand side -------------------------------------------------------------------------
+def test_the_right_hand_side_of_a_mode_is_its_contact_problem():
+    """``evaluate_at``: ż, the mode's accelerations (as every block's absolute acceleration), its
+    contact forces (the normal force of each closed end, the friction along the face), the power
+    of the floor's d'Alembert forces −Σ m (a_h Ẋ + a_v Ẏ) and the power friction dissipates,
+    μk·N·|slip rate|, all against the oracle's solve of the same mode."""
+    rng = np.random.default_rng(31)
+    kinds = set()
+    for _ in range(80):
+        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+        n = P.shape[0]
+        ah, av = rng.uniform(-1.2, 1.2) * G, rng.uniform(-0.5, 0.5) * G
+        oracle = Oracle(P, ends, anchor, geo, z, zd, ah, av, ACCELERATION, np.zeros(3 * n))
+        combo = _combo(nstate, tstate)
+        solution = oracle.solve(combo)
+        if solution is None:
+            continue
+        ok, dy, lam = _evaluate(P, ends, anchor, nstate, tstate, z, zd, ah, av)
+        assert ok
+        nz = 3 * n
+        assert np.array_equal(dy[:nz], zd)
+        zdd, _ = solution
+        want = oracle.J @ zdd + oracle.beta
+        got = oracle.J @ dy[nz:2 * nz] + oracle.beta
+        np.testing.assert_allclose(got, want, rtol=0, atol=1e-7 * (G + np.abs(want).max()))
+        scale = np.sum(P[:, P_MASS]) * G
+        p_in = -sum(P[k, P_MASS] * (ah * (oracle.J @ zd)[3 * k] + av * (oracle.J @ zd)[3 * k + 1]) for k in range(n))
+        assert abs(dy[2 * nz] - p_in) <= 1e-12 * (abs(p_in) + scale * np.abs(zd).max())
+        p_fric = 0.0
+        for k in range(n):
+            i = 3 * k
+            normal, total, friction = _oracle_forces(oracle, combo, k)
+            if nstate[k] == FLAT:
+                n_anchor, n_other = flat_forces(P, ends, anchor, k, z, lam)
+                assert abs(n_anchor - normal[anchor[k]]) <= 1e-7 * scale
+                assert abs(n_other - normal[1 - anchor[k]]) <= 1e-7 * scale
+            elif nstate[k] == ROCK:
+                assert abs(lam[i + 2] - normal[anchor[k]]) <= 1e-7 * scale
+            if friction is not None:
+                along = 1.0 if ends[k, anchor[k], 0] == END_U else -1.0
+                assert abs(lam[i] - along * friction) <= 1e-7 * scale, (k, lam[i], friction)
+                if tstate[k] != 0:
+                    slip_rate = oracle.ds[k, anchor[k]] @ zd
+                    p_fric += P[k, P_MU_K] * total * oracle.sigma(k, 0, int(tstate[k])) * slip_rate
+            kinds.add((int(nstate[k]), int(tstate[k] != 0), int(ends[k, anchor[k], 0])))
+        assert abs(dy[2 * nz + 1] - p_fric) <= 1e-7 * scale * (np.abs(zd).max() + 1e-3)
+    # every normal state, stuck and slipping, on both kinds of anchor
+    for kind in [(FLAT, 0, 0), (FLAT, 1, 0), (ROCK, 0, 0), (ROCK, 1, 0), (OPEN, 0, 0), (FLAT, 0, 1), (ROCK, 0, 1)]:
+        assert kind in kinds, kind
+
+
+def test_a_slipping_interface_dissipates_what_its_friction_force_does_work():
+    """The ledger's friction rate is the power of the friction force on the slip: positive, and
+    μk·N·|ȧ| for a flat block sliding on the floor (here with a_h = 0, N = m g, ȧ = 0.3 m/s)."""
+    stack = Stack(blocks=(Block(width=0.4, height=0.6, mass=20.0),),
+                  interfaces=(Interface(friction=_friction(0.5, 0.3)),))
+    P, ends, anchor, z = pack(stack)
+    for v in (0.3, -0.3):
+        zd = np.array([v, 0.0, 0.0])
+        tstate = np.array([int(np.sign(v))])
+        ok, dy, lam = _evaluate(P, ends, anchor, np.array([FLAT]), tstate, z, zd, 0.0, 0.0)
+        assert ok
+        assert dy[7] == pytest.approx(0.3 * 20.0 * G * 0.3, rel=1e-14)
+        assert dy[3] == pytest.approx(-np.sign(v) * 0.3 * G, rel=1e-14)  # decelerating at μk g
+        assert dy[6] == 0.0  # no floor motion, no work done by it
+
+
+def test_evaluate_reads_the_floor_acceleration_at_its_time():
+    """``evaluate``/``guards`` at a time t are ``evaluate_at``/``guards_at`` at the floor's
+    accelerations there, read from the piece table (horizontal first, vertical second), to the
+    bit."""
+    rng = np.random.default_rng(32)
+    for _ in range(20):
+        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+        n = P.shape[0]
+        a_h, w_h, p_h, a_v, w_v, p_v = rng.uniform(0.5, 5.0), rng.uniform(1, 20), rng.uniform(0, 6), \
+            rng.uniform(0.5, 3.0), rng.uniform(1, 20), rng.uniform(0, 6)
+        loc = _harmonic_floor(a_h, w_h, p_h, a_v, w_v, p_v)
+        t = rng.uniform(0.0, 10.0)
+        ah, av = a_h * math.cos(w_h * t + p_h), a_v * math.cos(w_v * t + p_v)
+        y = _y(z, zd)
+        ws = E.new_workspace(n)
+        dy1, lam1, dy2, lam2 = (np.zeros(6 * n + 2), np.zeros(3 * n), np.zeros(6 * n + 2), np.zeros(3 * n))
+        E.evaluate(P, ends, anchor, nstate, tstate, t, y, loc, G, dy1, lam1, ws)
+        E.evaluate_at(P, ends, anchor, nstate, tstate, ah, av, y, G, dy2, lam2, ws)
+        assert np.array_equal(dy1, dy2) and np.array_equal(lam1, lam2)
+        held = np.zeros(n, dtype=np.bool_)
+        g1, g2 = np.zeros(n * E.N_GUARD_SLOTS), np.zeros(n * E.N_GUARD_SLOTS)
+        E.guards(P, ends, anchor, nstate, tstate, t, y, loc, G, g1, held, ws)
+        E.guards_at(P, ends, anchor, nstate, tstate, ah, av, y, G, g2, held, ws)
+        assert np.array_equal(g1, g2)
+        out = np.zeros(6 * n + 2)
+        E._rhs(P, ends, anchor, nstate, tstate, t, y, loc, G, out, ws)
+        assert np.array_equal(out, dy1)
+
+
+# ---- the guards -----------------------------------------------------------------------------------
+def _expected_guards(P, ends, anchor, nstate, tstate, z, zd, oracle, held):
+    """Each guard from its definition (docs/theory/stack.md §7), with the oracle's forces and
+    geometry."""
+    n = P.shape[0]
+    want = np.ones(n * E.N_GUARD_SLOTS)
+    combo = _combo(nstate, tstate)
+    for k in range(n):
+        b = k * E.N_GUARD_SLOTS
+        i = 3 * k
+        normal, total, friction = _oracle_forces(oracle, combo, k)
+        gap_other = contact(P, ends, anchor, k, z, 1 - anchor[k])[0]
+        if nstate[k] == FLAT:
+            want[b + E.G_ANCHOR], want[b + E.G_OTHER] = normal[anchor[k]], normal[1 - anchor[k]]
+        elif nstate[k] == ROCK:
+            want[b + E.G_ANCHOR], want[b + E.G_OTHER] = normal[anchor[k]], gap_other
+        else:
+            want[b + E.G_ANCHOR] = contact(P, ends, anchor, k, z, anchor[k])[0]
+            want[b + E.G_OTHER] = gap_other
+        if held[k]:
+            want[b + E.G_ANCHOR] = 1.0
+            if nstate[k] == FLAT:
+                want[b + E.G_OTHER] = 1.0
+        if nstate[k] >= ROCK and P[k, P_CAN_SLIP] > 0.5:
+            along = 1.0 if ends[k, anchor[k], 0] == END_U else -1.0
+            if tstate[k] == 0:
+                want[b + E.G_STICK_POS] = P[k, P_MU_S] * total - along * friction
+                want[b + E.G_STICK_NEG] = P[k, P_MU_S] * total + along * friction
+            else:
+                want[b + E.G_STICK_POS] = tstate[k] * zd[i]
+        want[b + E.G_OVERTURN] = 0.5 * math.pi - abs(z[i + 1])
+        if k >= 1:
+            rx, _ = relative(P, ends, anchor, k, z[i], z[i + 1], z[i + 2])
+            bu, hu, bl = P[k, P_BU], P[k, P_HU], P[k, P_BL]
+            xl = rx + rot(z[i + 1], -bu, -hu)[0]
+            xr = rx + rot(z[i + 1], bu, -hu)[0]
+            want[b + E.G_OVERLAP] = min(xr, bl) - max(xl, -bl)
+            if nstate[k] == FLAT and tstate[k] != 0:
+                # how far each end's corner is from the lower block's edge it would pass
+                want[b + E.G_EDGE] = min(abs(xl + bl), abs(bl - xr))
+    return want
+
+
+@pytest.mark.parametrize("with_held", [False, True], ids=["free", "held"])
+def test_the_guards_are_the_modes_forces_gaps_and_margins(with_held):
+    """``guards_at``: per interface, the anchor's normal force (an open interface: its gap d), the
+    other end's force (flat) or gap, μs·N ∓ T of a stuck interface or σ·ȧ of a slipping one, the
+    margin π/2 − |φ| to overturning, the overlap of the faces and, for a block sliding flat, its
+    distance from the lower block's edge. A contact held in tension does not watch its forces."""
+    rng = np.random.default_rng(33 + with_held)
+    seen_edge = seen_overhang = 0
+    for _ in range(80):
+        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+        n = P.shape[0]
+        ah, av = rng.uniform(-1.2, 1.2) * G, rng.uniform(-0.5, 0.5) * G
+        oracle = Oracle(P, ends, anchor, geo, z, zd, ah, av, ACCELERATION, np.zeros(3 * n))
+        if oracle.solve(_combo(nstate, tstate)) is None:
+            continue
+        held = (rng.random(n) < 0.5) if with_held else np.zeros(n, dtype=np.bool_)
+        g = np.full(n * E.N_GUARD_SLOTS, np.nan)
+        E.guards_at(P, ends, anchor, nstate, tstate, ah, av, _y(z, zd), G, g, held, E.new_workspace(n))
+        want = _expected_guards(P, ends, anchor, nstate, tstate, z, zd, oracle, held)
+        scale = np.sum(P[:, P_MASS]) * G
+        force = np.array([E._is_force(j, nstate, tstate) for j in range(g.shape[0])])
+        tol = np.where(force, 1e-7 * scale, 1e-12)
+        assert np.all(np.abs(g - want) <= tol), np.nonzero(np.abs(g - want) > tol)
+        for k in range(1, n):
+            if nstate[k] == FLAT and tstate[k] != 0:
+                seen_edge += 1
+                seen_overhang += int(ends[k, 0, 0] != END_U or ends[k, 1, 0] != END_U)
+    assert seen_edge >= 5 and seen_overhang >= 2
+
+
+def test_the_guard_kinds_are_forces_gaps_and_slip_rates():
+    """``_is_force``, ``_is_gap`` and ``_is_slip`` (which decide how an event is located and
+    which tolerance applies) classify each guard by what it is: a force changes with the contact
+    forces alone, a gap is a corner's distance from the face (the oracle's), a slip rate is σ·ȧ."""
+    rng = np.random.default_rng(35)
+    for _ in range(40):
+        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+        n = P.shape[0]
+        nz = 3 * n
+        lam = rng.uniform(-100.0, 100.0, nz)
+        held = np.zeros(n, dtype=np.bool_)
+        y = _y(z, zd)
+        g1, g2, g3 = (np.zeros(n * E.N_GUARD_SLOTS) for _ in range(3))
+        E.guards_from(P, ends, anchor, nstate, tstate, y, lam, g1, held)
+        E.guards_from(P, ends, anchor, nstate, tstate, y, 2.0 * lam + 1.0, g2, held)
+        y3 = y.copy()
+        y3[nz:2 * nz] = 2.0 * zd + 1.0
+        E.guards_from(P, ends, anchor, nstate, tstate, y3, lam, g3, held)
+        gaps = [contact(P, ends, anchor, k, z, e)[0] for k in range(n) for e in range(2)]
+        for j in range(n * E.N_GUARD_SLOTS):
+            k = j // E.N_GUARD_SLOTS
+            if g1[j] == g2[j] == g3[j] == 1.0:
+                continue  # a guard this mode does not watch (its kind is never asked)
+            assert E._is_force(j, nstate, tstate) == (g1[j] != g2[j]), j
+            assert E._is_slip(j, nstate, tstate) == (g1[j] != g3[j] and g1[j] == g2[j]), j
+            is_gap = g1[j] == g2[j] and g1[j] == g3[j] and any(abs(g1[j] - v) < 1e-12 for v in gaps) \
+                and j % E.N_GUARD_SLOTS in (E.G_ANCHOR, E.G_OTHER)
+            assert E._is_gap(j, nstate) == is_gap, (j, nstate[k], g1[j])
+        assert E._all_stuck(nstate, tstate) == all(nstate[k] == FLAT and tstate[k] == 0 for k in range(n))
+
+
+def test_a_stack_at_rest_has_guards_affine_in_the_floor_acceleration():
+    """``_rest_band``/``_band_guards``: at rest (ż = 0, every interface flat and stuck) each guard
+    is affine in (a_h, a_v); the band gives the guards of any floor acceleration to rounding."""
+    rng = np.random.default_rng(36)
+    for _ in range(15):
+        n = int(rng.integers(1, 4))
+        blocks = tuple(Block(width=rng.uniform(0.2, 1.0), height=rng.uniform(0.2, 1.5), mass=rng.uniform(5, 300))
+                       for _ in range(n))
+        interfaces = tuple(Interface(friction=_friction(0.5, 0.4) if rng.random() < 0.7 else None) for _ in range(n))
+        P, ends, anchor, z = pack(Stack(blocks=blocks, interfaces=interfaces))
+        nstate, tstate = np.full(n, FLAT, dtype=np.int64), np.zeros(n, dtype=np.int64)
+        held = np.zeros(n, dtype=np.bool_)
+        y = _y(z, np.zeros(3 * n))
+        ws = E.new_workspace(n)
+        m = n * E.N_GUARD_SLOTS
+        band0, band_h, band_v, g, want = (np.zeros(m) for _ in range(5))
+        E._rest_band(P, ends, anchor, nstate, tstate, y, G, held, band0, band_h, band_v, ws)
+        for _ in range(5):
+            ah, av = rng.uniform(-8.0, 8.0), rng.uniform(-5.0, 5.0)
+            E._band_guards(band0, band_h, band_v, _floor(ah, av), 0.0, g)
+            E.guards_at(P, ends, anchor, nstate, tstate, ah, av, y, G, want, held, ws)
+            scale = np.sum(P[:, P_MASS]) * G
+            np.testing.assert_allclose(g, want, rtol=0, atol=1e-12 * scale)
+
+
+# ---- the step ---------------------------------------------------------------------------------------
+def _frozen(P, nstate, tstate):
+    """The coordinates a mode holds still (docs/theory/stack.md §4): d of a closed interface, φ
+    of a flat one, a of a closed one that sticks or never slips."""
+    out = []
+    for k in range(P.shape[0]):
+        closed = nstate[k] >= ROCK
+        out += [closed and (tstate[k] == 0 or P[k, P_CAN_SLIP] < 0.5), nstate[k] == FLAT, closed]
+    return np.array(out)
+
+
+def test_a_step_integrates_the_free_coordinates_and_whatever_still_moves():
+    """``_moving``: first, in increasing order, the free coordinates and any held one whose rate
+    is not zero, then the free coordinates' rates, then the two ledger entries; then the rest.
+    A single block integrates everything."""
+    rng = np.random.default_rng(37)
+    for _ in range(60):
+        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+        n = P.shape[0]
+        nz = 3 * n
+        if rng.random() < 0.3:
+            zd = zd + (rng.random(nz) < 0.3) * rng.uniform(-1, 1, nz)  # held coordinates still moving
+        y = _y(z, zd)
+        ws = E.new_workspace(n)
+        E._moving(P, nstate, tstate, y, ws)
+        act, m = ws[E.WS_ACT], ws[E.WS_N_ACT][0]
+        if n == 1:
+            assert m == 2 * nz + 2 and np.array_equal(act, np.arange(2 * nz + 2))
+            continue
+        frozen = _frozen(P, nstate, tstate)
+        moving = [i for i in range(nz) if not frozen[i] or zd[i] != 0.0]
+        rates = [nz + i for i in range(nz) if not frozen[i]]
+        first = moving + rates + [2 * nz, 2 * nz + 1]
+        rest = [i for i in range(nz) if i not in moving] + [nz + i for i in range(nz) if frozen[i]]
+        assert m == len(first)
+        assert list(act) == first + rest
+
+
+def _one_scipy_step(method, fun, t, y, h):
+    solver = method(fun, t, y, t + 2 * h, first_step=h, max_step=h, rtol=1e3, atol=1e3)
+    solver.step()
+    assert solver.status == "running" and solver.t == t + h
+    return solver
+
+
+@pytest.mark.parametrize("kind", ["dop853", "dopri5"])
+def test_one_step_is_scipys_step_of_the_same_right_hand_side(kind):
+    """``_step`` (DOP853) and ``_step5`` (Dormand–Prince 5(4)) on the moving components give
+    SciPy's DOP853 and RK45 step of the full state, ledger included; the frozen components stay
+    put to the bit; the step's end holds the right-hand side and contact forces there; DOP853's
+    dense output (``_dense_prepare``) is SciPy's at interior points."""
+    rng = np.random.default_rng(38 + (kind == "dopri5"))
+    for _ in range(12):
+        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+        n = P.shape[0]
+        nz = 3 * n
+        ny = 2 * nz + 2
+        loc = _harmonic_floor(3.0, 9.0, 0.4, 1.0, 14.0, 1.1)
+        t, h = rng.uniform(0.0, 5.0), 2e-3
+        y = _y(z, zd, ledger=(rng.uniform(-1, 1), rng.uniform(0, 1)))
+        ws = E.new_workspace(n)
+
+        def fun(tt, yy):
+            out = np.zeros(ny)
+            E._rhs(P, ends, anchor, nstate, tstate, tt, np.ascontiguousarray(yy), loc, G, out, E.new_workspace(n))
+            return out
+
+        E._moving(P, nstate, tstate, y, ws)
+        K = np.zeros((dop853.N_K, ny))
+        K[0] = fun(t, y)
+        y_new = np.zeros(ny)
+        if kind == "dop853":
+            err = E._step(P, ends, anchor, nstate, tstate, t, y, h, loc, G, K, y_new, 1e-10, 1e-10, ny, ws)
+            solver = _one_scipy_step(DOP853, fun, t, y, h)
+            end = K[dop853.FSAL]
+        else:
+            err = E._step5(P, ends, anchor, nstate, tstate, t, y, h, loc, G, K, y_new, 1e-10, 1e-10, ny, ws)
+            solver = _one_scipy_step(RK45, fun, t, y, h)
+            end = K[E.FSAL5]
+        scale = np.abs(y).max() + h * np.abs(K[0]).max()
+        np.testing.assert_allclose(y_new, solver.y, rtol=0, atol=1e-12 * scale)
+        assert math.isfinite(err) and err >= 0.0
+        frozen = _frozen(P, nstate, tstate)
+        still = [i for i in range(nz) if frozen[i] and zd[i] == 0.0] + [nz + i for i in range(nz) if frozen[i]]
+        assert np.array_equal(y_new[still], y[still])
+        lam_end = np.zeros(nz)
+        want_end = np.zeros(ny)
+        E.evaluate(P, ends, anchor, nstate, tstate, t + h, y_new, loc, G, want_end, lam_end, E.new_workspace(n))
+        assert np.array_equal(end, want_end) and np.array_equal(ws[E.WS_LAM_END], lam_end)
+        if kind == "dop853":
+            F = np.zeros((dop853.INTERPOLATOR_POWER, ny))
+            E._dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, h, loc, G, K, F, ws)
+            dense = solver.dense_output()
+            out = np.zeros(ny)
+            for x in (0.1, 0.37, 0.5, 0.83):
+                dop853.dense_on(y, F, x, out, ws[E.WS_ACT], ws[E.WS_N_ACT][0])
+                np.testing.assert_allclose(out, dense(t + x * h), rtol=0, atol=1e-12 * scale)
+
+
+def test_a_rejected_step_reports_its_error_above_one():
+    """The error norm a step returns is what decides acceptance: a step 100 times too long for
+    the tolerance reports more than 1, a short one less."""
+    stack = Stack(blocks=(Block(width=0.3, height=1.2, mass=100.0),), interfaces=(Interface(),))
+    P, ends, anchor, z = pack(stack)
+    z = z.copy()
+    z[1] = -0.05
+    zd = np.array([0.0, 0.8, 0.0])
+    nstate, tstate = np.array([ROCK]), np.array([0])
+    loc = _harmonic_floor(3.0, 9.0, 0.4, 0.0, 1.0, 0.0)
+    errors = []
+    for h in (1e-3, 0.3):
+        y = _y(z, zd)
+        ws = E.new_workspace(1)
+        E._moving(P, nstate, tstate, y, ws)
+        K = np.zeros((dop853.N_K, 8))
+        E._rhs(P, ends, anchor, nstate, tstate, 0.0, y, loc, G, K[0], ws)
+        errors.append(E._step(P, ends, anchor, nstate, tstate, 0.0, y, h, loc, G, K, np.zeros(8), 1e-10, 1e-10, 8,
+                              ws))
+    assert errors[0] < 1.0 < errors[1]
+
+
+# ---- impacts ----------------------------------------------------------------------------------------
+def _contact_point(P, ends, anchor, k, z, e):
+    """End e's contact point in the lower block's frame."""
+    i = 3 * k
+    kind, x_e = ends[k, e]
+    if kind == END_U:
+        cx, cy = relative(P, ends, anchor, k, z[i], z[i + 1], z[i + 2])
+        px, py = rot(z[i + 1], x_e, -P[k, P_HU])
+        return np.array([cx + px, cy + py])
+    return np.array([x_e, P[k, P_HL]])
+
+
+def test_housners_ratio_is_the_angular_momentum_about_the_new_corner():
+    """``_housner_ratio``: a block turning at ω about its old corner p₀ lands on p₁ and goes on
+    about p₁ alone. The angular momentum about p₁ is kept: J ω + m (c − p₁) × (ω × (c − p₀)) =
+    I₁ ω⁺, I₁ = J + m |c − p₁|². For a uniform block on its own corners that is Housner's
+    1 − (3/2) sin² α."""
+    rng = np.random.default_rng(39)
+    checked = 0
+    while checked < 40:
+        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+        k = int(rng.integers(0, P.shape[0]))
+        i = 3 * k
+        z = z.copy()
+        z[i + 1] = z[i + 2] = 0.0  # flat, at the instant of the landing
+        c = np.array(relative(P, ends, anchor, k, z[i], 0.0, 0.0))
+        p1 = _contact_point(P, ends, anchor, k, z, anchor[k])
+        p0 = _contact_point(P, ends, anchor, k, z, 1 - anchor[k])
+        m, J = P[k, P_MASS], P[k, P_INERTIA]
+        r1, r0 = c - p1, c - p0
+        v = np.array([-r0[1], r0[0]])  # ω ẑ × (c − p₀), ω = 1
+        i_1 = J + m * (r1 @ r1)
+        ratio = (J + m * (r1[0] * v[1] - r1[1] * v[0])) / i_1
+        got_ratio, got_i = E._housner_ratio(P, ends, anchor, k, z)
+        assert got_i == pytest.approx(i_1, rel=1e-13)
+        assert got_ratio == pytest.approx(ratio, rel=1e-12, abs=1e-13)
+        checked += 1
+    # Housner's uniform block on its own corners
+    b, h = 0.15, 0.6
+    P, ends, anchor, z = pack(Stack(blocks=(Block(width=2 * b, height=2 * h, mass=7.0),), interfaces=(Interface(),)))
+    alpha = math.atan2(b, h)
+    assert E._housner_ratio(P, ends, anchor, 0, z)[0] == pytest.approx(1 - 1.5 * math.sin(alpha) ** 2, rel=1e-14)
+
+
+def test_the_restitution_couple_gives_the_chosen_restitution():
+    """``_housner_couple``: a single block landing on its other corner, given the couple of its
+    interface's restitution r, leaves that corner turning at r times its rate before (the impact
+    solved by ``select_mode`` at the velocity level): the seed's impact law. With no r (NaN) the
+    couple is zero: the plastic impact, Housner's ratio."""
+    for r in (0.3, 0.75, float("nan")):
+        interface = Interface(restitution=None if math.isnan(r) else r)
+        stack = Stack(blocks=(Block(width=0.4, height=1.4, mass=80.0),), interfaces=(interface,))
+        P, ends, anchor, z = pack(stack)
+        assert math.isnan(P[0, P_RESTITUTION]) == math.isnan(r)
+        # rocking about the left corner (anchor 0, φ < 0), φ reaching 0 with φ̇ > 0: lands on the right
+        z, zd = z.copy(), np.array([0.0, 0.9, 0.0])
+        a, d, ad, dd = anchor_at(P, ends, anchor, 0, z, zd, 1, ends[0, 1, 0], ends[0, 1, 1])
+        anchor = np.array([1])
+        z[0], z[2], zd[0], zd[2] = a, d, ad, dd
+        assert dd < 0.0  # the right corner comes down
+        extra = np.full(3, 7.0)  # stale values, cleared
+        E._housner_couple(P, ends, anchor, 0, z, zd, extra)
+        r_h, i_o = E._housner_ratio(P, ends, anchor, 0, z)
+        want = 0.0 if math.isnan(r) else (r - r_h) * i_o * zd[1]
+        assert extra[0] == 0.0 and extra[2] == 0.0 and extra[1] == pytest.approx(want, rel=1e-14, abs=0.0)
+        nstate, tstate = np.zeros(1, dtype=np.int64), np.zeros(1, dtype=np.int64)
+        x, lam = np.zeros(3), np.zeros(3)
+        code = select_mode(VELOCITY, P, ends, anchor, np.array([FLAT]), z, zd, 0.0, 0.0, G, extra, nstate, tstate,
+                           -1, 0, 1e-10 * 80 * G, 1e-12, x, lam)
+        assert code == SELECT_OK and nstate[0] == ROCK and anchor[0] == 1
+        want_rate = (r_h if math.isnan(r) else r) * 0.9
+        assert x[1] == pytest.approx(want_rate, rel=1e-12)
+        assert x[0] == 0.0 and x[2] == 0.0
+
+
+def test_projecting_onto_a_mode_is_the_nearest_velocity_in_kinetic_energy():
+    """``_project_onto_mode``: the velocity with the mode's frozen coordinates at zero that is
+    nearest to ż in the kinetic-energy metric (oracle mass matrix), so the kinetic energy falls by
+    ½ (ż − ż⁺)ᵀ M (ż − ż⁺) ≥ 0."""
+    rng = np.random.default_rng(40)
+    for _ in range(30):
+        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+        n = P.shape[0]
+        nz = 3 * n
+        zd = rng.uniform(-1.0, 1.0, nz)
+        pose = lambda q: poses(P, ends, anchor, q)  # noqa: E731
+        Jp = jacobian(pose, z)
+        W = np.concatenate([[P[k, P_MASS], P[k, P_MASS], P[k, P_INERTIA]] for k in range(n)])
+        M = Jp.T @ (W[:, None] * Jp)
+        free = ~_frozen(P, nstate, tstate)
+        want = np.zeros(nz)
+        if free.any():
+            want[free] = np.linalg.solve(M[np.ix_(free, free)], (M @ zd)[free])
+        got = zd.copy()
+        E._project_onto_mode(P, ends, anchor, nstate, tstate, z, got, 0.0, 0.0, G)
+        assert np.array_equal(got[~free], np.zeros(int((~free).sum())))
+        np.testing.assert_allclose(got, want, rtol=0, atol=1e-12 * (1 + np.abs(want).max()))
+        loss = 0.5 * zd @ M @ zd - 0.5 * got @ M @ got
+        assert loss == pytest.approx(0.5 * (zd - got) @ M @ (zd - got), rel=1e-9, abs=1e-12)
+
+
+def test_the_energy_an_impact_may_add_is_its_rounding_and_the_rest_motion():
+    """``_energy_allowance`` is 1e-9 of the kinetic energy before the impact plus the kinetic
+    energy of every block moving at the rest velocity × its size (half-width + half-height);
+    ``_creates_energy`` compares the outcome's kinetic energy (the oracle's) with that."""
+    rng = np.random.default_rng(41)
+    for _ in range(20):
+        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+        n = P.shape[0]
+        t_before, rest = rng.uniform(0.0, 50.0), rng.uniform(1e-6, 1e-3)
+        e_rest = sum(0.5 * P[k, P_MASS] * (rest * (P[k, P_BU] + P[k, P_HU])) ** 2 for k in range(n))
+        allowance = E._energy_allowance(P, t_before, rest)
+        assert allowance == pytest.approx(1e-9 * t_before + e_rest, rel=1e-14)
+        zd = rng.uniform(-1.0, 1.0, 3 * n)
+        qd = jacobian(lambda q: poses(P, ends, anchor, q), z) @ zd  # noqa: E731
+        W = np.concatenate([[P[k, P_MASS], P[k, P_MASS], P[k, P_INERTIA]] for k in range(n)])
+        kinetic = 0.5 * np.sum(W * qd ** 2)
+        assert E._kinetic_of(P, ends, anchor, z, zd) == pytest.approx(kinetic, rel=1e-12)
+        after = np.concatenate([zd, np.zeros(3 * n)])  # (it reads the first 3N entries only)
+        assert E._creates_energy(P, ends, anchor, z, after, kinetic * (1 - 1e-6) - allowance, allowance)
+        assert not E._creates_energy(P, ends, anchor, z, after, kinetic * (1 + 1e-6) - allowance, allowance)
+
+
+# ---- what the run saves and tracks ---------------------------------------------------------------------
+def test_the_slip_is_the_blocks_displacement_on_the_block_below():
+    """``slip_of``: with the interface flat, how far block k's centre has moved along the block
+    below from where it was placed (its offset), whichever corner anchors it."""
+    rng = np.random.default_rng(42)
+    kinds = set()
+    for _ in range(60):
+        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+        k = int(rng.integers(0, P.shape[0]))
+        i = 3 * k
+        z = z.copy()
+        z[i] += rng.uniform(-0.1, 0.1)
+        z[i + 1] = z[i + 2] = 0.0
+        rx, _ = relative(P, ends, anchor, k, z[i], 0.0, 0.0)
+        assert E.slip_of(P, ends, anchor, k, z) == pytest.approx(rx - P[k, P_OFFSET], abs=1e-14)
+        kinds.add(int(ends[k, anchor[k], 0]))
+    assert kinds == {0, 1}
+
+
+def test_the_slide_direction_is_the_way_the_block_moves_on_the_one_below():
+    """``_slide_direction``: the sign of the block's velocity relative to the block below (the
+    oracle's slip rate), or at the start of a slip (ȧ = 0) the way its slip state points."""
+    rng = np.random.default_rng(43)
+    kinds = set()
+    for _ in range(60):
+        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+        n = P.shape[0]
+        k = int(rng.integers(0, n))
+        zd = zd.copy()
+        moving = rng.random() < 0.5
+        zd[3 * k] = rng.choice([-1.0, 1.0]) * rng.uniform(0.01, 0.5) if moving else 0.0
+        oracle = Oracle(P, ends, anchor, geo, z, zd, 0.0, 0.0, ACCELERATION, np.zeros(3 * n))
+        for sigma in (-1, 0, 1):
+            got = E._slide_direction(ends, anchor, k, zd, sigma)
+            if moving:
+                assert got == np.sign(oracle.ds[k, anchor[k]] @ zd)
+            else:
+                assert got == oracle.sigma(k, 0, sigma)
+        kinds.add((moving, int(ends[k, anchor[k], 0])))
+    assert len(kinds) == 4
+
+
+def test_a_saved_row_holds_the_poses_the_interfaces_and_the_ledger():
+    """``_save_row``: t; per block X, Y, Θ, Ẋ, Ẏ, Θ̇ (the oracle's poses and their rates); per
+    interface φ, the slip, the normal and tangential states; then the energy (kinetic +
+    potential), the work of the floor, the friction loss and the impact loss."""
+    rng = np.random.default_rng(44)
+    for _ in range(20):
+        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+        n = P.shape[0]
+        ledger = rng.uniform(-5.0, 5.0, 2)
+        samples = np.full((3, 1 + E.N_BLOCK_COLS * n + E.N_IFACE_COLS * n + E.N_TAIL), np.nan)
+        t, d_impact = rng.uniform(0, 10), rng.uniform(0, 3)
+        E._save_row(P, ends, anchor, nstate, tstate, t, _y(z, zd, ledger), G, np.zeros(n), d_impact, samples, 1,
+                    E.new_workspace(n))
+        row = samples[1]
+        assert np.isnan(samples[0]).all() and np.isnan(samples[2]).all()
+        q = poses(P, ends, anchor, z)
+        qd = jacobian(lambda qq: poses(P, ends, anchor, qq), z) @ zd  # noqa: E731
+        assert row[0] == t
+        blocks = row[1:1 + E.N_BLOCK_COLS * n].reshape(n, E.N_BLOCK_COLS)
+        np.testing.assert_allclose(blocks[:, :3], q.reshape(n, 3), rtol=0, atol=1e-12)
+        np.testing.assert_allclose(blocks[:, 3:], qd.reshape(n, 3), rtol=0, atol=1e-12)
+        ifaces = row[1 + E.N_BLOCK_COLS * n:1 + (E.N_BLOCK_COLS + E.N_IFACE_COLS) * n].reshape(n, E.N_IFACE_COLS)
+        for k in range(n):
+            assert ifaces[k, 0] == z[3 * k + 1]
+            assert ifaces[k, 1] == E.slip_of(P, ends, anchor, k, z)
+            assert (ifaces[k, 2], ifaces[k, 3]) == (nstate[k], tstate[k])
+        W = np.concatenate([[P[k, P_MASS], P[k, P_MASS], P[k, P_INERTIA]] for k in range(n)])
+        e = 0.5 * np.sum(W * qd ** 2) + G * np.sum(P[:, P_MASS] * q[1::3])
+        tail = row[-E.N_TAIL:]
+        assert tail[0] == pytest.approx(e, rel=1e-12, abs=1e-12)
+        assert list(tail[1:]) == [ledger[0], ledger[1], d_impact]
+        assert E._energy_of(P, ends, anchor, _y(z, zd), G) == tail[0]
+
+
+def test_a_turning_point_inside_a_step_counts_for_the_peaks():
+    """``_peaks_inside``: where a block's rate of rotation changes sign inside the step, its angle
+    there counts for the peak of φ (its own interface) and of θ (the sum up to it), read from the
+    dense output; a turning point beyond the step's used fraction does not."""
+    P, ends, anchor, z = pack(Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0),
+                                            Block(width=0.3, height=1.2, mass=100.0)),
+                                    interfaces=(Interface(), Interface())))
+    n, nz = 2, 6
+    y = np.zeros(2 * nz + 2)
+    F = np.zeros((dop853.INTERPOLATOR_POWER, 2 * nz + 2))
+    # In the dense form y + x(F0 + (1 − x) F1): φ₁ (component 4) = 0.01 + 0.08 x(1 − x), turning
+    # at x = 1/2 where φ₁ = 0.03, its rate (component nz + 4) 0.08 (1 − 2x); φ₀ (component 1)
+    # = −0.02 + 0.04 x, never turning, its rate 0.04. θ₁ = φ₀ + φ₁ has the rate 0.12 − 0.16 x,
+    # turning at x = 3/4.
+    y[4], F[1, 4] = 0.01, 0.08
+    y[nz + 4], F[0, nz + 4] = 0.08, -0.16
+    y[1], F[0, 1] = -0.02, 0.04
+    y[nz + 1] = 0.04
+    summ = np.zeros((n, E.N_BLOCK_SUMMARY))
+    E._peaks_inside(P, y, F, 1.0, summ)
+    assert summ[1, E.B_PEAK_PHI] == pytest.approx(0.03, rel=1e-12)
+    theta_1 = (-0.02 + 0.04 * 0.75) + (0.01 + 0.08 * 0.75 * 0.25)
+    assert summ[1, E.B_PEAK_ABS_THETA] == pytest.approx(theta_1, rel=1e-12)
+    assert summ[0, E.B_PEAK_PHI] == 0.0 and summ[0, E.B_PEAK_ABS_THETA] == 0.0
+    # up to x = 0.6 the θ turning point is not reached; the φ one is
+    summ = np.zeros((n, E.N_BLOCK_SUMMARY))
+    E._peaks_inside(P, y, F, 0.6, summ)
+    assert summ[1, E.B_PEAK_PHI] == pytest.approx(0.03, rel=1e-12)
+    assert summ[1, E.B_PEAK_ABS_THETA] == 0.0
+    # a larger peak already booked stays
+    summ[1, E.B_PEAK_PHI] = 0.5
+    E._peaks_inside(P, y, F, 1.0, summ)
+    assert summ[1, E.B_PEAK_PHI] == 0.5
+
+
+def test_an_event_record_holds_its_fields_and_counts_past_the_capacity():
+    events = np.full((2, E.N_EVENT_FIELDS), np.nan)
+    n = E._record(events, 0, 1.25, 1, E.G_STICK_POS, ROCK, -1, 0.5)
+    assert n == 1 and list(events[0]) == [1.25, 1, E.G_STICK_POS, ROCK, -1, 0.5]
+    n = E._record(events, 2, 2.0, 0, 0, FLAT, 0, 0.0)
+    assert n == 3 and np.isnan(events[1]).all()
+
+
+def test_a_contact_pulls_when_its_force_is_below_minus_the_tolerance():
+    """``_pulls`` and ``_mark_pulling``: a flat interface pulls if either end's normal force (the
+    oracle's) is below −tol, a rocking one if its corner's is, an open one never; the first such
+    time is noted and kept."""
+    rng = np.random.default_rng(45)
+    seen = set()
+    for _ in range(60):
+        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+        n = P.shape[0]
+        ah, av = rng.uniform(-1.5, 1.5) * G, rng.uniform(-1.2, 0.5) * G
+        oracle = Oracle(P, ends, anchor, geo, z, zd, ah, av, ACCELERATION, np.zeros(3 * n))
+        combo = _combo(nstate, tstate)
+        if oracle.solve(combo) is None:
+            continue
+        ok, dy, lam = _evaluate(P, ends, anchor, nstate, tstate, z, zd, ah, av)
+        tol = 1e-3 * np.sum(P[:, P_MASS]) * G
+        summ = np.full((n, E.N_BLOCK_SUMMARY), np.nan)
+        summ[0, E.B_HELD] = 0.5
+        E._mark_pulling(P, ends, anchor, nstate, z, lam, tol, 2.0, summ)
+        for k in range(n):
+            normal, _, _ = _oracle_forces(oracle, combo, k)
+            lowest = min(normal.values(), default=np.inf)
+            if abs(lowest + tol) < 1e-5 * np.sum(P[:, P_MASS]) * G:  # (both solve to ~1e-7 of it)
+                continue
+            pulls = lowest < -tol
+            assert E._pulls(P, ends, anchor, nstate, k, z, lam, tol) == pulls
+            if k == 0:
+                assert summ[0, E.B_HELD] == 0.5
+            else:
+                assert (summ[k, E.B_HELD] == 2.0) == pulls and (np.isnan(summ[k, E.B_HELD]) != pulls)
+            seen.add((int(nstate[k]), pulls))
+    assert {(FLAT, True), (FLAT, False), (ROCK, True), (ROCK, False), (OPEN, False)} <= seen
