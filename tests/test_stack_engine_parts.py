@@ -728,3 +728,169 @@ def test_a_contact_pulls_when_its_force_is_below_minus_the_tolerance():
                 assert (summ[k, E.B_HELD] == 2.0) == pulls and (np.isnan(summ[k, E.B_HELD]) != pulls)
             seen.add((int(nstate[k]), pulls))
     assert {(FLAT, True), (FLAT, False), (ROCK, True), (ROCK, False), (OPEN, False)} <= seen
+
+
+def test_tracking_books_the_peaks_the_first_times_and_the_friction_needed():
+    """``_track``: the peaks of |φ| (per interface) and |θ| (absolute, the oracle's Θ), of the
+    slip and its path, the first time each interface is open, rocks or slides, and the friction
+    ratio |T|/N a closed interface that does not slip needs (the oracle's forces), unless its
+    block is turned past its tipping angle atan(b/h), where N vanishes as it falls."""
+    rng = np.random.default_rng(46)
+    kinds = set()
+    for _ in range(40):
+        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+        n = P.shape[0]
+        ah, av = rng.uniform(-0.8, 0.8) * G, rng.uniform(-0.3, 0.3) * G
+        oracle = Oracle(P, ends, anchor, geo, z, zd, ah, av, ACCELERATION, np.zeros(3 * n))
+        combo = _combo(nstate, tstate)
+        if oracle.solve(combo) is None:
+            continue
+        summ = np.full((n, E.N_BLOCK_SUMMARY), np.nan)
+        for slot in (E.B_PEAK_PHI, E.B_PEAK_SLIP, E.B_MU_REQ, E.B_SLIP_PATH, E.B_PEAK_ABS_THETA):
+            summ[:, slot] = 0.0
+        slip0 = rng.uniform(-0.01, 0.01, n)
+        before = slip0.copy()
+        lam = np.full(3 * n, np.nan)
+        E._track(P, ends, anchor, nstate, tstate, _y(z, zd), 1.5, slip0, summ, lam, _floor(ah, av), G,
+                 E.new_workspace(n), False)
+        theta = poses(P, ends, anchor, z)[2::3]
+        for k in range(n):
+            i = 3 * k
+            s = E.slip_of(P, ends, anchor, k, z)
+            assert summ[k, E.B_PEAK_PHI] == abs(z[i + 1]) and summ[k, E.B_PEAK_ABS_THETA] == pytest.approx(
+                abs(theta[k]), abs=1e-15)
+            assert summ[k, E.B_PEAK_SLIP] == abs(s) and slip0[k] == s
+            assert summ[k, E.B_SLIP_PATH] == abs(s - before[k])
+            assert (summ[k, E.B_LIFTOFF] == 1.5) == (nstate[k] == OPEN)
+            assert (summ[k, E.B_FIRST_ROCK] == 1.5) == (nstate[k] == ROCK)
+            assert (summ[k, E.B_FIRST_SLIDE] == 1.5) == (nstate[k] >= ROCK and tstate[k] != 0)
+            _, total, friction = _oracle_forces(oracle, combo, k)
+            tipped = abs(z[i + 1]) >= math.atan2(P[k, P_BU], P[k, P_HU])
+            sticks = nstate[k] >= ROCK and (tstate[k] == 0 or P[k, P_CAN_SLIP] < 0.5)
+            scale = np.sum(P[:, P_MASS]) * G
+            if sticks and not tipped and total > 1e-6 * scale:
+                assert summ[k, E.B_MU_REQ] == pytest.approx(abs(friction) / total, rel=1e-6, abs=1e-9)
+                kinds.add("booked")
+            elif not (sticks and not tipped and abs(total) <= 1e-6 * scale):
+                assert summ[k, E.B_MU_REQ] == 0.0
+                kinds.add("not booked")
+        # a second call later: the first times stay, the peaks only grow, the path adds up;
+        # with the forces given (forces_known), they are not computed again
+        lam2 = lam.copy()
+        lam2[0::3] *= 3.0
+        summ2 = summ.copy()
+        z2 = z * 0.5
+        E._track(P, ends, anchor, nstate, tstate, _y(z2, zd), 2.5, slip0, summ2, lam2, _floor(ah, av), G,
+                 E.new_workspace(n), True)
+        for slot in (E.B_LIFTOFF, E.B_FIRST_ROCK, E.B_FIRST_SLIDE):
+            np.testing.assert_array_equal(summ2[:, slot], summ[:, slot])
+        np.testing.assert_array_equal(summ2[:, E.B_PEAK_PHI], summ[:, E.B_PEAK_PHI])
+        for k in range(n):
+            s2 = E.slip_of(P, ends, anchor, k, z2)
+            step = abs(s2 - E.slip_of(P, ends, anchor, k, z))
+            assert summ2[k, E.B_SLIP_PATH] == pytest.approx(summ[k, E.B_SLIP_PATH] + step, abs=1e-15)
+            if summ[k, E.B_MU_REQ] > 0.0 and lam2[3 * k + 2] > 0.0 and abs(z2[3 * k + 1]) < math.atan2(
+                    P[k, P_BU], P[k, P_HU]):
+                assert summ2[k, E.B_MU_REQ] == pytest.approx(3.0 * summ[k, E.B_MU_REQ], rel=1e-12)
+    assert {"booked", "not booked"} <= kinds
+    # a block rocking on a stuck corner books its friction ratio until it passes its tipping angle
+    P, ends, anchor, z = pack(Stack(blocks=(Block(width=0.3, height=1.2, mass=50.0),),
+                                    interfaces=(Interface(friction=_friction(0.8, 0.6)),)))
+    alpha = math.atan2(0.15, 0.6)
+    anchor = np.array([1])
+    booked, ratios = [], []
+    for phi in (alpha - 0.02, alpha + 0.02):
+        z1 = np.array([ends[0, 1, 1], phi, 0.0])
+        summ = np.zeros((1, E.N_BLOCK_SUMMARY))
+        lam = np.zeros(3)
+        E._track(P, ends, anchor, np.array([ROCK]), np.array([0]), _y(z1, np.array([0.0, 0.5, 0.0])), 0.1,
+                 np.zeros(1), summ, lam, _floor(-3.0, 0.0), G, E.new_workspace(1), False)
+        assert lam[2] > 0.0
+        booked.append(summ[0, E.B_MU_REQ])
+        ratios.append(abs(lam[0]) / lam[2])
+    assert booked[0] == ratios[0] and ratios[0] > 0.05 and booked[1] == 0.0 and ratios[1] > 0.05
+
+
+def _block_in_flight():
+    """A single block in flight (OPEN): its anchor's guard is its gap d, the state's component 2."""
+    P, ends, anchor, z = pack(Stack(blocks=(Block(width=0.4, height=0.8, mass=30.0),), interfaces=(Interface(),)))
+    nstate, tstate = np.array([OPEN]), np.array([0])
+    ws = E.new_workspace(1)
+    y = np.zeros(8)
+    E._moving(P, nstate, tstate, y, ws)
+    return P, ends, anchor, nstate, tstate, ws
+
+
+def test_an_event_is_located_where_its_guard_reaches_zero_on_the_dense_output():
+    """``_locate``: the gap d(x) = 0.01 − 0.04 x + 0.02 x² of a block in flight (written in the
+    dense form y + x(F0 + (1 − x) F1)) reaches zero at x* = 1 − 1/√2. The fraction returned is
+    the end of the last bracket: at or just past x*, within the 1e-13 s the search stops at."""
+    P, ends, anchor, nstate, tstate, ws = _block_in_flight()
+    y = np.zeros(8)
+    F = np.zeros((dop853.INTERPOLATOR_POWER, 8))
+    y[2], F[0, 2], F[1, 2] = 0.01, -0.02, -0.02
+    root = 1.0 - 1.0 / math.sqrt(2.0)
+    held = np.zeros(1, dtype=np.bool_)
+    ym, gm = np.zeros(8), np.zeros(E.N_GUARD_SLOTS)
+    for hs in (1e-3, 0.05):
+        for lo, hi in ((0.0, 1.0), (0.2, 0.5)):
+            glo = 0.01 - 0.04 * lo + 0.02 * lo * lo
+            ghi = 0.01 - 0.04 * hi + 0.02 * hi * hi
+            x = E._locate(P, ends, anchor, nstate, tstate, 2.0, y, hs, F, _floor(0.0, -12.0), G, E.G_ANCHOR, lo, hi,
+                          glo, ghi, ym, gm, held, ws)
+            assert 0.0 <= (x - root) * hs <= 2e-13, (hs, lo, hi, x - root)
+
+
+def test_a_grazing_guard_is_searched_for_its_minimum():
+    """``_minimum`` (golden section): the gap 0.011 − 0.04 x + 0.04 x² has its minimum 0.001 at
+    x = 1/2; with 0.009 in place of 0.011 it dips below zero, and the search stops at a point
+    where it is ≤ 0."""
+    P, ends, anchor, nstate, tstate, ws = _block_in_flight()
+    F = np.zeros((dop853.INTERPOLATOR_POWER, 8))
+    F[1, 2] = -0.04
+    held = np.zeros(1, dtype=np.bool_)
+    ym, gm = np.zeros(8), np.zeros(E.N_GUARD_SLOTS)
+    hs = 1e-3
+    for y2, lo, hi in ((0.011, 0.0, 1.0), (0.011, 0.3, 0.9), (0.009, 0.0, 1.0)):
+        y = np.zeros(8)
+        y[2] = y2
+        x, g = E._minimum(P, ends, anchor, nstate, tstate, 1.0, y, hs, F, _floor(0.0, -12.0), G, E.G_ANCHOR, lo, hi,
+                          ym, gm, held, ws)
+        assert lo <= x <= hi
+        assert g == pytest.approx(y2 - 0.04 * x + 0.04 * x * x, abs=1e-17)
+        if y2 > 0.01:
+            assert abs(x - 0.5) < 1e-8 and g == pytest.approx(0.001, abs=1e-16)
+        else:
+            assert g <= 0.0
+
+
+def test_the_grid_points_inside_a_step_are_saved_from_its_dense_output():
+    """``_save_grid``: every multiple of save_dt in [t, t_stop] not saved yet, each the row of the
+    dense state there (or of the step's ends, without a dense output); none past the capacity."""
+    P, ends, anchor, nstate, tstate, ws = _block_in_flight()
+    rng = np.random.default_rng(47)
+    y = rng.uniform(-0.1, 0.1, 8)
+    y_end = rng.uniform(-0.1, 0.1, 8)
+    F = rng.uniform(-0.1, 0.1, (dop853.INTERPOLATOR_POWER, 8))
+    K = np.zeros((dop853.N_K, 8))
+    t, h, save_dt = 0.1003, 0.0125, 0.002
+    ncol = 1 + E.N_BLOCK_COLS + E.N_IFACE_COLS + E.N_TAIL
+    for dense_ok, t_stop, cap in ((True, t + h, 100), (True, 0.108, 100), (False, t + h, 100), (True, t + h, 4)):
+        samples = np.full((cap, ncol), np.nan)
+        samples[:2] = 0.0  # two rows already saved
+        n_out, next_grid = E._save_grid(P, ends, anchor, nstate, tstate, t, y, h, F, dense_ok, K, _floor(0, 0), G,
+                                        save_dt, 50, 10_000, samples, 2, cap, np.zeros(1), 0.25, y_end, t_stop, ws)
+        grid = [j * save_dt for j in range(50, 100) if t <= j * save_dt <= t_stop]
+        grid = grid[:cap - 2]
+        assert n_out == 2 + len(grid) and next_grid == 50 + (t > 50 * save_dt) + len(grid)
+        assert np.isnan(samples[n_out:]).all()
+        for r, tg in enumerate(grid):
+            x = (tg - t) / h
+            state = np.zeros(8)
+            if dense_ok:
+                dop853.dense(y, F, x, state)
+            else:
+                state = y_end if x >= 1.0 else y
+            want = np.full((1, ncol), np.nan)
+            E._save_row(P, ends, anchor, nstate, tstate, tg, state, G, np.zeros(1), 0.25, want, 0, E.new_workspace(1))
+            np.testing.assert_allclose(samples[2 + r], want[0], rtol=0, atol=1e-15)
