@@ -894,3 +894,47 @@ def test_the_grid_points_inside_a_step_are_saved_from_its_dense_output():
             want = np.full((1, ncol), np.nan)
             E._save_row(P, ends, anchor, nstate, tstate, tg, state, G, np.zeros(1), 0.25, want, 0, E.new_workspace(1))
             np.testing.assert_allclose(samples[2 + r], want[0], rtol=0, atol=1e-15)
+
+
+@pytest.mark.parametrize("rising", [True, False], ids=["passing the threshold", "turning back"])
+def test_the_mode_after_an_event_is_the_one_the_motion_goes_on_in(rising):
+    """``_select_ahead``: at a threshold every branch ties (a normal force of zero holds closed as
+    well as open), so the mode is decided a moment later, where the floor's motion breaks the tie.
+    A block at rest whose floor acceleration reaches its uplift value g·b/h and goes on past it
+    rocks on the corner behind (and the state at the event is re-expressed at that corner, the
+    block's pose unchanged); one whose floor turns back there stays flat. A floor that reaches
+    −g vertically and falls on faster lifts the block off; one that turns back keeps it down."""
+    b, h = 0.2, 0.6
+    stack = Stack(blocks=(Block(width=2 * b, height=2 * h, mass=40.0),), interfaces=(Interface(),))
+    slope = 50.0 if rising else -50.0
+    t = 0.7
+    for direction in (1, -1):
+        P, ends, anchor, z = pack(stack)
+        zd = np.zeros(3)
+        # start anchored on the corner the block will not rock on, so that a move is visible
+        start = 1 if direction > 0 else 0
+        a, d, ad, dd = anchor_at(P, ends, anchor, 0, z, zd, start, ends[0, start, 0], ends[0, start, 1])
+        anchor = np.array([start])
+        z = np.array([a, 0.0, d])
+        pose = poses(P, ends, anchor, z)
+        # a_h(t) = direction·g·b/h at the event, then on past it (or back)
+        loc = np.array([LOCAL_LINEAR, direction * G * b / h, direction * slope, t, 0.0,
+                        LOCAL_LINEAR, 0.0, 0.0, 0.0, 0.0])
+        nstate, tstate = np.array([FLAT]), np.array([0])
+        x_sel, lam_sel = np.zeros(3), np.zeros(3)
+        code = E._select_ahead(P, ends, anchor, np.array([FLAT]), t, z, zd, loc, G, np.zeros(3), nstate, tstate,
+                               -1, 0, 1e-10 * 40 * G, 1e-12, x_sel, lam_sel, E.new_workspace(1))
+        assert code == SELECT_OK
+        if rising:
+            # a floor pushing +x throws the block back onto its left corner (end 0)
+            assert nstate[0] == ROCK and anchor[0] == (0 if direction > 0 else 1)
+        else:
+            assert nstate[0] == FLAT and anchor[0] == start
+        np.testing.assert_allclose(poses(P, ends, anchor, z), pose, rtol=0, atol=1e-15)
+    # vertically: the floor at −g, falling on faster or turning back
+    P, ends, anchor, z = pack(stack)
+    loc = np.array([LOCAL_LINEAR, 0.0, 0.0, 0.0, 0.0, LOCAL_LINEAR, -G, -slope, t, 0.0])
+    nstate, tstate = np.array([FLAT]), np.array([0])
+    code = E._select_ahead(P, ends, anchor, np.array([FLAT]), t, z, np.zeros(3), loc, G, np.zeros(3), nstate,
+                           tstate, -1, 0, 1e-10 * 40 * G, 1e-12, np.zeros(3), np.zeros(3), E.new_workspace(1))
+    assert code == SELECT_OK and nstate[0] == (OPEN if rising else FLAT)
