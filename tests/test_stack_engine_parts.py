@@ -938,3 +938,34 @@ def test_the_mode_after_an_event_is_the_one_the_motion_goes_on_in(rising):
     code = E._select_ahead(P, ends, anchor, np.array([FLAT]), t, z, np.zeros(3), loc, G, np.zeros(3), nstate,
                            tstate, -1, 0, 1e-10 * 40 * G, 1e-12, np.zeros(3), np.zeros(3), E.new_workspace(1))
     assert code == SELECT_OK and nstate[0] == (OPEN if rising else FLAT)
+
+
+def test_an_impact_that_would_gain_energy_restitutes_the_largest_fraction_that_does_not():
+    """``_impact_with_less_restitution``: the restitution couple is scaled by the largest s in
+    [0, 1] whose outcome is consistent and has no more kinetic energy than allowed. A slender
+    block landing with r above its Housner ratio r_H leaves at (r_H + s(r − r_H))·φ̇⁻; given an
+    energy budget equal to what s* = 0.6 leaves, the bisection finds s* (to 2⁻³⁰), leaves the
+    couple scaled by it and the block rocking on the corner it landed on."""
+    stack = Stack(blocks=(Block(width=0.3, height=1.2, mass=60.0),), interfaces=(Interface(restitution=0.97),))
+    P, ends, anchor, z = pack(stack)
+    zd = np.array([0.0, 0.9, 0.0])
+    a, d, ad, dd = anchor_at(P, ends, anchor, 0, z, zd, 1, ends[0, 1, 0], ends[0, 1, 1])
+    anchor = np.array([1])
+    z, zd = np.array([a, 0.0, d]), np.array([ad, 0.9, dd])
+    extra = np.zeros(3)
+    E._housner_couple(P, ends, anchor, 0, z, zd, extra)
+    r_h, i_o = E._housner_ratio(P, ends, anchor, 0, z)
+    assert 0.0 < r_h < 0.97
+    for s_star in (0.6, 0.05):
+        rate = (r_h + s_star * (0.97 - r_h)) * 0.9
+        budget = 0.5 * i_o * rate ** 2  # the block turning about its corner at that rate
+        zz, zzd, ee, aa, ex = z.copy(), zd.copy(), ends.copy(), anchor.copy(), extra.copy()
+        nstate, tstate = np.zeros(1, dtype=np.int64), np.zeros(1, dtype=np.int64)
+        x_sel, lam_sel = np.zeros(3), np.zeros(3)
+        code = E._impact_with_less_restitution(P, ee, aa, np.array([FLAT]), zz, zzd, 0.0, 0.0, G, ex, nstate,
+                                               tstate, 1e-10, 1e-12, x_sel, lam_sel, budget, 0.0)
+        assert code == SELECT_OK and nstate[0] == ROCK and aa[0] == 1
+        s = ex[1] / extra[1]
+        assert abs(s - s_star) < 2e-9 and s <= s_star * (1 + 1e-12)
+        assert x_sel[1] == pytest.approx(rate, rel=1e-8)
+        assert E._kinetic_of(P, ee, aa, zz, x_sel) <= budget * (1 + 1e-12)
