@@ -969,3 +969,127 @@ def test_an_impact_that_would_gain_energy_restitutes_the_largest_fraction_that_d
         assert abs(s - s_star) < 2e-9 and s <= s_star * (1 + 1e-12)
         assert x_sel[1] == pytest.approx(rate, rel=1e-8)
         assert E._kinetic_of(P, ee, aa, zz, x_sel) <= budget * (1 + 1e-12)
+
+
+# ---- events ------------------------------------------------------------------------------------------
+def _event(P, ends, anchor, nstate, tstate, y, loc, k, slot, rest_velocity=1e-7, stop_at_edge=False, t=0.8):
+    n = P.shape[0]
+    events = np.full((4, E.N_EVENT_FIELDS), np.nan)
+    summ = np.full((n, E.N_BLOCK_SUMMARY), np.nan)
+    held = np.zeros(n, dtype=np.bool_)
+    geo = nstate.copy()
+    status, d_impact, n_ev = E._handle_event(
+        P, ends, anchor, nstate, tstate, geo, t, y, loc, G, k, slot, 1e-10 * np.sum(P[:, P_MASS]) * G, 1e-12,
+        rest_velocity, np.zeros(3 * n), np.zeros(3 * n), np.zeros(3 * n), events, 0, 0.1, summ, held, stop_at_edge,
+        E.new_workspace(n))
+    return status, d_impact - 0.1, events[:n_ev], summ
+
+
+def _landing(width, height, mass, rate, restitution=None, paper=False):
+    """A block rocking on its left corner (φ < 0) back to φ = 0 at φ̇ = rate, its right corner
+    touching the floor: the event of that corner's gap."""
+    P, ends, anchor, z = pack(Stack(blocks=(Block(width=width, height=height, mass=mass),),
+                                    interfaces=(Interface(restitution=restitution),)))
+    if paper:
+        from rocking.stack.kinematics import P_IMPACT_PAPER
+
+        P = P.copy()
+        P[0, P_IMPACT_PAPER] = 1.0
+    y = _y(z, np.array([0.0, rate, 0.0]))
+    return P, ends, anchor, np.array([ROCK]), np.array([0]), y
+
+
+@pytest.mark.parametrize("restitution, paper", [(None, False), (0.5, False), (None, True), (0.5, True)],
+                         ids=["Housner", "r = 0.5", "paper, Housner", "paper, r = 0.5"])
+def test_a_landing_turns_the_block_onto_the_corner_it_hits(restitution, paper):
+    """``_handle_event`` at a corner's impact: the block goes on rocking about the corner it hit
+    at r·φ̇⁻ (Housner's 1 − 3/2 sin²α for a uniform block, or the interface's r; the coupled
+    impulse solve and the paper's Eq. 1 agree on a single block), the anchor moves there, the
+    impact loss ½ I_O φ̇⁻² (1 − r²) is booked and recorded with the event."""
+    b, h, m, rate = 0.15, 0.6, 60.0, 0.9
+    P, ends, anchor, nstate, tstate, y = _landing(2 * b, 2 * h, m, rate, restitution, paper)
+    status, d_impact, events, summ = _event(P, ends, anchor, nstate, tstate, y, _floor(0.0, 0.0), 0, E.G_OTHER)
+    r = 1.0 - 1.5 * math.sin(math.atan2(b, h)) ** 2 if restitution is None else restitution
+    i_o = m * (4.0 / 3.0) * (b * b + h * h)
+    loss = 0.5 * i_o * rate ** 2 * (1.0 - r * r)
+    assert status == 0 and nstate[0] == ROCK and tstate[0] == 0 and anchor[0] == 1
+    assert y[4] == pytest.approx(r * rate, rel=1e-12) and y[3] == 0.0 and y[5] == 0.0
+    assert y[1] == 0.0 and y[2] == 0.0
+    assert d_impact == pytest.approx(loss, rel=1e-10)
+    assert len(events) == 1 and list(events[0, :5]) == [0.8, 0, E.EVENT_IMPACT, ROCK, 0]
+    assert events[0, 5] == pytest.approx(loss, rel=1e-10)
+
+
+def test_a_landing_slower_than_the_rest_velocity_lands_flat():
+    """An impact that leaves the block turning slower than ``rest_velocity`` lands it flat: all
+    its kinetic energy goes to the impact loss, and it rests."""
+    P, ends, anchor, nstate, tstate, y = _landing(0.3, 1.2, 60.0, 2e-6)
+    status, d_impact, events, summ = _event(P, ends, anchor, nstate, tstate, y, _floor(0.0, 0.0), 0, E.G_OTHER,
+                                            rest_velocity=1e-5)
+    i_o = 60.0 * (4.0 / 3.0) * (0.15 ** 2 + 0.6 ** 2)
+    assert status == 0 and nstate[0] == FLAT and np.all(y[3:6] == 0.0)
+    assert d_impact == pytest.approx(0.5 * i_o * 4e-12, rel=1e-9)
+    assert list(events[0, :5]) == [0.8, 0, E.EVENT_IMPACT, FLAT, 0]
+
+
+def test_an_overturn_and_a_slide_past_the_edge_stop_the_run():
+    """A block past π/2, or off the face below, ends the run as overturned at that time; a corner
+    at the edge below ends it as slid past the edge when asked (``stop_at_edge``) and otherwise
+    goes on."""
+    P, ends, anchor, nstate, tstate, y = _landing(0.3, 1.2, 60.0, 0.5)
+    for slot in (E.G_OVERTURN, E.G_OVERLAP):
+        status, _, events, summ = _event(P, ends, anchor, nstate.copy(), tstate.copy(), y.copy(), _floor(0, 0), 0,
+                                         slot, t=1.25)
+        assert status == E.STATUS_OVERTURNED and summ[0, E.B_OVERTURN] == 1.25
+        assert list(events[0]) == [1.25, 0, slot, ROCK, 0, 0.0]
+    stack = Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(width=0.3, height=0.4, mass=20.0)),
+                  interfaces=(Interface(), Interface(friction=_friction(0.3, 0.2))))
+    P, ends, anchor, z = pack(stack)
+    zd = np.array([0.0, 0.0, 0.0, 0.2, 0.0, 0.0])
+    for stop in (True, False):
+        nstate, tstate = np.array([FLAT, FLAT]), np.array([0, 1])
+        status, _, events, _ = _event(P, ends, anchor.copy(), nstate, tstate, _y(z, zd), _floor(0, 0), 1, E.G_EDGE,
+                                      stop_at_edge=stop)
+        if stop:
+            assert status == E.STATUS_PAST_EDGE and list(events[0]) == [0.8, 1, E.G_EDGE, FLAT, 1, 0.0]
+        else:
+            assert status == 0 and list(events[0, :3]) == [0.8, 1, E.G_EDGE]
+
+
+@pytest.mark.parametrize("ah_over_g, tstate_after", [(0.0, 0), (0.45, 0), (0.7, -1)])
+def test_a_slip_that_stops_sticks_if_static_friction_can_hold_it(ah_over_g, tstate_after):
+    """The slip guard of a block sliding on the floor (ȧ reaching 0): the slip stops, exactly,
+    and it sticks if the floor's acceleration needs less than μs·g (μs = 0.5) to carry it, or
+    slips on the other way (relative to the floor, against the floor's acceleration)."""
+    P, ends, anchor, z = pack(Stack(blocks=(Block(width=1.0, height=0.4, mass=50.0),),
+                                    interfaces=(Interface(friction=_friction(0.5, 0.4)),)))
+    y = _y(z, np.array([1e-18, 0.0, 0.0]))
+    nstate, tstate = np.array([FLAT]), np.array([1])
+    status, d_impact, events, _ = _event(P, ends, anchor, nstate, tstate, y, _floor(ah_over_g * G, 0.0), 0,
+                                         E.G_STICK_POS)
+    assert status == 0 and nstate[0] == FLAT and tstate[0] == tstate_after and y[3] == 0.0
+    assert d_impact == 0.0 and list(events[0]) == [0.8, 0, E.G_STICK_POS, FLAT, tstate_after, 0.0]
+
+
+@pytest.mark.parametrize("slot", ["anchor", "stick"])
+def test_a_guard_that_fires_at_a_tie_vetoes_the_branch_it_ends(slot):
+    """At the instant a stuck block's friction need reaches μs·g, or a flat block's floor
+    acceleration reaches its uplift value (here 1e-11 past it, inside the force tolerance, so
+    flat still holds as well), both branches tie; the guard's veto, with the floor's acceleration
+    held there, takes the branch the guard opens: slip, or rocking on the other corner."""
+    if slot == "stick":
+        P, ends, anchor, z = pack(Stack(blocks=(Block(width=1.0, height=0.4, mass=50.0),),
+                                        interfaces=(Interface(friction=_friction(0.5, 0.4)),)))
+        nstate, tstate = np.array([FLAT]), np.array([0])
+        status, _, events, _ = _event(P, ends, anchor, nstate, tstate, _y(z, np.zeros(3)), _floor(0.5 * G, 0.0), 0,
+                                      E.G_STICK_POS)
+        assert status == 0 and nstate[0] == FLAT and tstate[0] == -1
+    else:
+        P, ends, anchor, z = pack(Stack(blocks=(Block(width=0.3, height=1.2, mass=50.0),), interfaces=(Interface(),)))
+        nstate, tstate = np.array([FLAT]), np.array([0])
+        assert anchor[0] == 0
+        ah = -G * 0.15 / 0.6 * (1.0 + 1e-11)  # throws the block onto its right corner, lifting the left
+        status, _, events, _ = _event(P, ends, anchor, nstate, tstate, _y(z, np.zeros(3)), _floor(ah, 0.0), 0,
+                                      E.G_ANCHOR)
+        assert status == 0 and nstate[0] == ROCK and anchor[0] == 1
+    assert list(events[0, :3]) == [0.8, 0, E.G_STICK_POS if slot == "stick" else E.G_ANCHOR]
