@@ -1093,3 +1093,31 @@ def test_a_guard_that_fires_at_a_tie_vetoes_the_branch_it_ends(slot):
                                       E.G_ANCHOR)
         assert status == 0 and nstate[0] == ROCK and anchor[0] == 1
     assert list(events[0, :3]) == [0.8, 0, E.G_STICK_POS if slot == "stick" else E.G_ANCHOR]
+
+
+def test_the_papers_impact_law_keeps_the_pedestals_sliding_velocity():
+    """The paper's Eq. 1 at a statue's landing on a sliding pedestal: φ̇⁺ = r·φ̇⁻ about the new
+    corner, every other interface's velocity unchanged (the pedestal's u̇), and the kinetic
+    energy the change takes booked as the impact loss (against the oracle's kinetic energy)."""
+    from rocking.stack.kinematics import P_IMPACT_PAPER
+
+    stack = Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(width=0.3, height=1.2, mass=100.0)),
+                  interfaces=(Interface(friction=_friction(0.2, 0.15)), Interface(restitution=0.6)))
+    P, ends, anchor, z = pack(stack)
+    P = P.copy()
+    P[:, P_IMPACT_PAPER] = 1.0
+    zd = np.array([0.25, 0.0, 0.0, 0.0, 0.7, 0.0])  # pedestal sliding, statue landing on its right corner
+    y = _y(z, zd)
+    nstate, tstate = np.array([FLAT, ROCK]), np.array([1, 0])
+    before = zd.copy()
+    status, d_impact, events, _ = _event(P, ends, anchor, nstate, tstate, y, _floor(0.0, 0.0), 1, E.G_OTHER)
+    assert status == 0 and (nstate[1], anchor[1]) == (ROCK, 1) and y[6] == 0.25 and y[7] == 0.0 and y[8] == 0.0
+    assert y[10] == pytest.approx(0.6 * 0.7, rel=1e-14) and y[9] == 0.0 and y[11] == 0.0
+
+    def kinetic(anchor_, z_, zd_):
+        qd = jacobian(lambda q: poses(P, ends, anchor_, q), z_) @ zd_  # noqa: E731
+        W = np.array([300.0, 300.0, P[0, P_INERTIA], 100.0, 100.0, P[1, P_INERTIA]])
+        return 0.5 * np.sum(W * qd ** 2)
+
+    loss = kinetic(np.array([0, 0]), z, before) - kinetic(anchor, y[:6], y[6:12])
+    assert loss > 0.0 and d_impact == pytest.approx(loss, rel=1e-9)
