@@ -938,6 +938,16 @@ def test_the_mode_after_an_event_is_the_one_the_motion_goes_on_in(rising):
     code = E._select_ahead(P, ends, anchor, np.array([FLAT]), t, z, np.zeros(3), loc, G, np.zeros(3), nstate,
                            tstate, -1, 0, 1e-10 * 40 * G, 1e-12, np.zeros(3), np.zeros(3), E.new_workspace(1))
     assert code == SELECT_OK and nstate[0] == (OPEN if rising else FLAT)
+    # The moment grows with t beyond 1 s (LOOKAHEAD·t), as the rounding of t does: 40 s into a
+    # run, a floor passing −g at 2 m/s³ (a record's slope between samples 0.05 s and 0.01 g
+    # apart) changes the normal force by 8e-9 of the weight in 4e-8 s, past the force tolerance
+    # (1e-10 of it); in a moment that shrank with t (1e-9/t = 2.5e-11 s) it would change by 5e-12
+    # of it, and the tie would stay in contact.
+    loc = np.array([LOCAL_LINEAR, 0.0, 0.0, 0.0, 0.0, LOCAL_LINEAR, -G, -slope / 25.0, 40.0, 0.0])
+    nstate, tstate = np.array([FLAT]), np.array([0])
+    code = E._select_ahead(P, ends, anchor, np.array([FLAT]), 40.0, z, np.zeros(3), loc, G, np.zeros(3), nstate,
+                           tstate, -1, 0, 1e-10 * 40 * G, 1e-12, np.zeros(3), np.zeros(3), E.new_workspace(1))
+    assert code == SELECT_OK and nstate[0] == (OPEN if rising else FLAT)
 
 
 def test_an_impact_that_would_gain_energy_restitutes_the_largest_fraction_that_does_not():
