@@ -29,7 +29,7 @@ import math
 
 import numpy as np
 import pytest
-from oracles.stack_contact import G, Oracle, contact, curvature, jacobian, poses, random_state, relative, rot
+from oracles.stack_contact import G, Oracle, contact, jacobian, poses, random_state, relative, rot
 from scipy.integrate import DOP853, RK45
 
 from rocking.contact.friction import Friction
@@ -37,8 +37,8 @@ from rocking.excitation.signal import LOCAL_COSINE, LOCAL_LINEAR
 from rocking.integrators import dop853
 from rocking.stack import Block, Interface, Stack
 from rocking.stack import engine as E
-from rocking.stack.kinematics import (END_U, P_BL, P_BU, P_CAN_SLIP, P_HL, P_HU, P_INERTIA, P_MASS, P_MU_K, P_MU_S,
-                                      P_OFFSET, P_RESTITUTION, anchor_at)
+from rocking.stack.kinematics import (END_U, P_BL, P_BU, P_CAN_SLIP, P_HL, P_HU, P_IMPACT_PAPER, P_INERTIA, P_MASS,
+                                      P_MU_K, P_MU_S, P_OFFSET, P_RESTITUTION, anchor_at)
 from rocking.stack.modes import ACCELERATION, FLAT, OPEN, ROCK, SELECT_OK, VELOCITY, flat_forces, select_mode
 from rocking.stack.simulate import pack
 
@@ -92,10 +92,25 @@ def _evaluate(P, ends, anchor, nstate, tstate, z, zd, ah, av):
     return ok, dy, lam
 
 
-def _oracle_forces(oracle, combo, k):
+def _solved_states(rng, samples, ah_range, av_range):
+    """``samples`` random states in their modes (``_state_in_a_mode``) under random floor
+    accelerations (ranges in g), each with the oracle's solve of its mode: (P, ends, anchor,
+    nstate, tstate, z, zd, ah, av, oracle, combo, solution). States whose contact problem is
+    nearly singular are skipped (they count towards ``samples``)."""
+    for _ in range(samples):
+        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+        ah, av = rng.uniform(*ah_range) * G, rng.uniform(*av_range) * G
+        oracle = Oracle(P, ends, anchor, geo, z, zd, ah, av, ACCELERATION, np.zeros(3 * P.shape[0]))
+        combo = _combo(nstate, tstate)
+        solution = oracle.solve(combo)
+        if solution is not None:
+            yield P, ends, anchor, nstate, tstate, z, zd, ah, av, oracle, combo, solution
+
+
+def _oracle_forces(oracle, solution, combo, k):
     """(N per closed end, total N, friction along the lower face) of interface k in the oracle's
-    solution of ``combo``."""
-    zdd, forces = oracle.solve(combo)
+    ``solution`` of ``combo``."""
+    zdd, forces = solution
     normal = {e: v for (kind, kk, e), v in forces.items() if kind == "N" and kk == k}
     nst, _, tst = combo[k]
     total = sum(normal.values())
@@ -116,15 +131,9 @@ def test_the_right_hand_side_of_a_mode_is_its_contact_problem():
     μk·N·|slip rate|, all against the oracle's solve of the same mode."""
     rng = np.random.default_rng(31)
     kinds = set()
-    for _ in range(80):
-        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+    for P, ends, anchor, nstate, tstate, z, zd, ah, av, oracle, combo, solution in _solved_states(
+            rng, 80, (-1.2, 1.2), (-0.5, 0.5)):
         n = P.shape[0]
-        ah, av = rng.uniform(-1.2, 1.2) * G, rng.uniform(-0.5, 0.5) * G
-        oracle = Oracle(P, ends, anchor, geo, z, zd, ah, av, ACCELERATION, np.zeros(3 * n))
-        combo = _combo(nstate, tstate)
-        solution = oracle.solve(combo)
-        if solution is None:
-            continue
         ok, dy, lam = _evaluate(P, ends, anchor, nstate, tstate, z, zd, ah, av)
         assert ok
         nz = 3 * n
@@ -139,7 +148,7 @@ def test_the_right_hand_side_of_a_mode_is_its_contact_problem():
         p_fric = 0.0
         for k in range(n):
             i = 3 * k
-            normal, total, friction = _oracle_forces(oracle, combo, k)
+            normal, total, friction = _oracle_forces(oracle, solution, combo, k)
             if nstate[k] == FLAT:
                 n_anchor, n_other = flat_forces(P, ends, anchor, k, z, lam)
                 assert abs(n_anchor - normal[anchor[k]]) <= 1e-7 * scale
@@ -205,7 +214,7 @@ def test_evaluate_reads_the_floor_acceleration_at_its_time():
 
 
 # ---- the guards -----------------------------------------------------------------------------------
-def _expected_guards(P, ends, anchor, nstate, tstate, z, zd, oracle, held):
+def _expected_guards(P, ends, anchor, nstate, tstate, z, zd, oracle, solution, held):
     """Each guard from its definition (docs/theory/stack.md §7), with the oracle's forces and
     geometry."""
     n = P.shape[0]
@@ -214,7 +223,7 @@ def _expected_guards(P, ends, anchor, nstate, tstate, z, zd, oracle, held):
     for k in range(n):
         b = k * E.N_GUARD_SLOTS
         i = 3 * k
-        normal, total, friction = _oracle_forces(oracle, combo, k)
+        normal, total, friction = _oracle_forces(oracle, solution, combo, k)
         gap_other = contact(P, ends, anchor, k, z, 1 - anchor[k])[0]
         if nstate[k] == FLAT:
             want[b + E.G_ANCHOR], want[b + E.G_OTHER] = normal[anchor[k]], normal[1 - anchor[k]]
@@ -255,17 +264,13 @@ def test_the_guards_are_the_modes_forces_gaps_and_margins(with_held):
     distance from the lower block's edge. A contact held in tension does not watch its forces."""
     rng = np.random.default_rng(33 + with_held)
     seen_edge = seen_overhang = 0
-    for _ in range(80):
-        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+    for P, ends, anchor, nstate, tstate, z, zd, ah, av, oracle, _, solution in _solved_states(
+            rng, 80, (-1.2, 1.2), (-0.5, 0.5)):
         n = P.shape[0]
-        ah, av = rng.uniform(-1.2, 1.2) * G, rng.uniform(-0.5, 0.5) * G
-        oracle = Oracle(P, ends, anchor, geo, z, zd, ah, av, ACCELERATION, np.zeros(3 * n))
-        if oracle.solve(_combo(nstate, tstate)) is None:
-            continue
         held = (rng.random(n) < 0.5) if with_held else np.zeros(n, dtype=np.bool_)
         g = np.full(n * E.N_GUARD_SLOTS, np.nan)
         E.guards_at(P, ends, anchor, nstate, tstate, ah, av, _y(z, zd), G, g, held, E.new_workspace(n))
-        want = _expected_guards(P, ends, anchor, nstate, tstate, z, zd, oracle, held)
+        want = _expected_guards(P, ends, anchor, nstate, tstate, z, zd, oracle, solution, held)
         scale = np.sum(P[:, P_MASS]) * G
         force = np.array([E._is_force(j, nstate, tstate) for j in range(g.shape[0])])
         tol = np.where(force, 1e-7 * scale, 1e-12)
@@ -702,21 +707,16 @@ def test_a_contact_pulls_when_its_force_is_below_minus_the_tolerance():
     time is noted and kept."""
     rng = np.random.default_rng(45)
     seen = set()
-    for _ in range(60):
-        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+    for P, ends, anchor, nstate, tstate, z, zd, ah, av, oracle, combo, solution in _solved_states(
+            rng, 60, (-1.5, 1.5), (-1.2, 0.5)):
         n = P.shape[0]
-        ah, av = rng.uniform(-1.5, 1.5) * G, rng.uniform(-1.2, 0.5) * G
-        oracle = Oracle(P, ends, anchor, geo, z, zd, ah, av, ACCELERATION, np.zeros(3 * n))
-        combo = _combo(nstate, tstate)
-        if oracle.solve(combo) is None:
-            continue
         ok, dy, lam = _evaluate(P, ends, anchor, nstate, tstate, z, zd, ah, av)
         tol = 1e-3 * np.sum(P[:, P_MASS]) * G
         summ = np.full((n, E.N_BLOCK_SUMMARY), np.nan)
         summ[0, E.B_HELD] = 0.5
         E._mark_pulling(P, ends, anchor, nstate, z, lam, tol, 2.0, summ)
         for k in range(n):
-            normal, _, _ = _oracle_forces(oracle, combo, k)
+            normal, _, _ = _oracle_forces(oracle, solution, combo, k)
             lowest = min(normal.values(), default=np.inf)
             if abs(lowest + tol) < 1e-5 * np.sum(P[:, P_MASS]) * G:  # (both solve to ~1e-7 of it)
                 continue
@@ -737,14 +737,9 @@ def test_tracking_books_the_peaks_the_first_times_and_the_friction_needed():
     block is turned past its tipping angle atan(b/h), where N vanishes as it falls."""
     rng = np.random.default_rng(46)
     kinds = set()
-    for _ in range(40):
-        P, ends, anchor, geo, nstate, tstate, z, zd = _state_in_a_mode(rng)
+    for P, ends, anchor, nstate, tstate, z, zd, ah, av, oracle, combo, solution in _solved_states(
+            rng, 40, (-0.8, 0.8), (-0.3, 0.3)):
         n = P.shape[0]
-        ah, av = rng.uniform(-0.8, 0.8) * G, rng.uniform(-0.3, 0.3) * G
-        oracle = Oracle(P, ends, anchor, geo, z, zd, ah, av, ACCELERATION, np.zeros(3 * n))
-        combo = _combo(nstate, tstate)
-        if oracle.solve(combo) is None:
-            continue
         summ = np.full((n, E.N_BLOCK_SUMMARY), np.nan)
         for slot in (E.B_PEAK_PHI, E.B_PEAK_SLIP, E.B_MU_REQ, E.B_SLIP_PATH, E.B_PEAK_ABS_THETA):
             summ[:, slot] = 0.0
@@ -764,7 +759,7 @@ def test_tracking_books_the_peaks_the_first_times_and_the_friction_needed():
             assert (summ[k, E.B_LIFTOFF] == 1.5) == (nstate[k] == OPEN)
             assert (summ[k, E.B_FIRST_ROCK] == 1.5) == (nstate[k] == ROCK)
             assert (summ[k, E.B_FIRST_SLIDE] == 1.5) == (nstate[k] >= ROCK and tstate[k] != 0)
-            _, total, friction = _oracle_forces(oracle, combo, k)
+            _, total, friction = _oracle_forces(oracle, solution, combo, k)
             tipped = abs(z[i + 1]) >= math.atan2(P[k, P_BU], P[k, P_HU])
             sticks = nstate[k] >= ROCK and (tstate[k] == 0 or P[k, P_CAN_SLIP] < 0.5)
             scale = np.sum(P[:, P_MASS]) * G
@@ -1001,8 +996,6 @@ def _landing(width, height, mass, rate, restitution=None, paper=False):
     P, ends, anchor, z = pack(Stack(blocks=(Block(width=width, height=height, mass=mass),),
                                     interfaces=(Interface(restitution=restitution),)))
     if paper:
-        from rocking.stack.kinematics import P_IMPACT_PAPER
-
         P = P.copy()
         P[0, P_IMPACT_PAPER] = 1.0
     y = _y(z, np.array([0.0, rate, 0.0]))
@@ -1109,8 +1102,6 @@ def test_the_papers_impact_law_keeps_the_pedestals_sliding_velocity():
     """The paper's Eq. 1 at a statue's landing on a sliding pedestal: φ̇⁺ = r·φ̇⁻ about the new
     corner, every other interface's velocity unchanged (the pedestal's u̇), and the kinetic
     energy the change takes booked as the impact loss (against the oracle's kinetic energy)."""
-    from rocking.stack.kinematics import P_IMPACT_PAPER
-
     stack = Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(width=0.3, height=1.2, mass=100.0)),
                   interfaces=(Interface(friction=_friction(0.2, 0.15)), Interface(restitution=0.6)))
     P, ends, anchor, z = pack(stack)
