@@ -126,6 +126,22 @@ MODULES: dict[str, list[str]] = {
     "integrators/dopri5.py": ["test_partial_steps.py", "test_dopri5.py"],
 }
 
+# Module -> test files run first *in the interpreter* (NUMBA_DISABLE_JIT=1): the @njit functions
+# run as plain Python, so nothing is compiled. A mutant these tests kill costs seconds instead of
+# a recompilation of the solver core (~40 s) plus the compiled tests; one they let through goes
+# on to the compiled tests of MODULES as before. The interpreter also checks every index, which
+# compiled code does not (a write past an array's end is a kill here, as in
+# tests/test_dop853.py). Only files that pass unmutated in the interpreter belong here (the
+# baseline checks it): not the signal tests, whose compiled loop must be interrupted mid-run.
+UNCOMPILED: dict[str, list[str]] = {
+    "solver/compiled.py": [
+        "test_fast_paths.py", "test_single_block_rocking.py", "test_independent_solver.py",
+        "test_sliding_and_slide_rock.py", "test_statue_on_pedestal.py", "test_integrator_crosscheck.py",
+        "test_crosscheck_mutants.py", "test_compiled_root_finders.py", "test_mutants.py",
+    ],
+}
+INTERPRETED = "killed in the interpreter (NUMBA_DISABLE_JIT=1), before any compilation"
+
 # One meaningful mutant per site, as mutmut makes, instead of cosmic-ray's every-operator-to-every-
 # operator cross product (12 mutants per `*`, most of them type errors that any test kills). A
 # comparison gets its negation and its boundary shift; arithmetic its inverse operation.
@@ -390,21 +406,32 @@ def restore(work: Work) -> None:
 # Tests
 
 
-def _pytest_args(work: Work, module: str, extra: list[str] | None = None) -> list[str]:
+def _pytest_args(work: Work, module: str, extra: list[str] | None = None, mapping=None) -> list[str]:
     # An entry is a test file or one test of it ("file.py::test_name"); a file the copy lacks
     # (mapped after the copy was made) is left out.
-    files = extra or [str(work.tree / "tests" / t) for t in MODULES[module]
+    files = extra or [str(work.tree / "tests" / t) for t in (mapping or MODULES)[module]
                       if (work.tree / "tests" / t.split("::")[0]).is_file()]
     return [sys.executable, "-m", "pytest", "-x", "-q", "--no-header", "-o", "addopts=", "-p", "no:cacheprovider",
             "-p", GUARD_PLUGIN, *files]
 
 
+def _interpreted(env: dict) -> dict:
+    return dict(env, NUMBA_DISABLE_JIT="1")
+
+
 def run_tests(work: Work, module: str, cache: Path, extra: list[str] | None = None, quiet=False) -> tuple[int, float]:
+    """Both stages (the interpreter's, if the module has one, then the compiled tests), as a
+    mutant runs them: (pytest's exit code, seconds)."""
     t0 = time.monotonic()
-    proc = subprocess.run(_pytest_args(work, module, extra), cwd=work.tree, env=work.env(cache),
-                          capture_output=quiet, text=True)
-    if quiet and proc.returncode:
-        print(proc.stdout[-3000:], proc.stderr[-3000:])
+    stages = [] if extra or module not in UNCOMPILED else [(_pytest_args(work, module, mapping=UNCOMPILED),
+                                                             _interpreted(work.env(cache)))]
+    stages.append((_pytest_args(work, module, extra), work.env(cache)))
+    for args, env in stages:
+        proc = subprocess.run(args, cwd=work.tree, env=env, capture_output=quiet, text=True)
+        if proc.returncode:
+            if quiet:
+                print(proc.stdout[-3000:], proc.stderr[-3000:])
+            break
     return proc.returncode, time.monotonic() - t0
 
 
@@ -450,6 +477,12 @@ def worker_test(work: Work, module: str) -> int:
         timeout = " (timeout)" if result.output == "timeout" else ""
         print(f"{MIRRORED} {folder}: {result.test_outcome}{timeout}")
         return 0 if result.test_outcome == "survived" else 1
+    if module in UNCOMPILED:
+        code = subprocess.run(_pytest_args(work, module, mapping=UNCOMPILED), cwd=work.tree,
+                              env=_interpreted(work.env(work.worker_cache))).returncode
+        if code:
+            print(INTERPRETED)
+            return code
     _fill_cache(work.base_cache, work.worker_cache, work.tree / "src", stale_modules(work.tree / "src", module))
     return subprocess.run(_pytest_args(work, module), cwd=work.tree, env=work.env(work.worker_cache)).returncode
 
@@ -628,7 +661,7 @@ def find_item(work: Work, job: str):
     raise SystemExit(f"no mutant {job} in {work.sessions}")
 
 
-def try_mutant(work: Work, job: str, tests: list[str], current: bool = False) -> int:
+def try_mutant(work: Work, job: str, tests: list[str], current: bool = False, interpreter: bool = False) -> int:
     """Apply one mutant and run the given tests (taken from the repository, where a new test is
     written) in a throw-away copy of the copy, with an empty numba cache: a session may be
     running in the main copy meanwhile. Returns pytest's exit code (0: the mutant survives).
@@ -637,7 +670,9 @@ def try_mutant(work: Work, job: str, tests: list[str], current: bool = False) ->
     re-check a survivor after a fix elsewhere, without dropping the sessions). If the mutated
     module itself has changed since the copy, the mutant's position may be wrong: it is then
     placed by its text instead (the one line it changes must occur exactly once in today's
-    module), or refused."""
+    module), or refused.
+
+    ``interpreter``: run the tests with NUMBA_DISABLE_JIT=1 (the interpreter stage of UNCOMPILED)."""
     from cosmic_ray.mutating import apply_mutation
     from cosmic_ray.plugins import get_operator
 
@@ -674,7 +709,8 @@ def try_mutant(work: Work, job: str, tests: list[str], current: bool = False) ->
             raise SystemExit("mutation could not be applied (has the module changed since the session began?)")
     print(describe(item), flush=True)
     cmd = _pytest_args(work, module, args)
-    code = subprocess.run(cmd, cwd=tree, env=work.env(cache, tree)).returncode
+    env = work.env(cache, tree)
+    code = subprocess.run(cmd, cwd=tree, env=_interpreted(env) if interpreter else env).returncode
     print("survives" if code == 0 else f"killed (pytest exit {code})")
     return code
 
@@ -764,6 +800,7 @@ def main(argv=None) -> int:
     p.add_argument("tests", nargs="+", help="test files or node ids, relative to the repository")
     p.add_argument("--current", action="store_true",
                    help="mutate the repository's current source, not the copy's (a changed module: placed by the line's text)")
+    p.add_argument("--interpreter", action="store_true", help="run the tests uncompiled (NUMBA_DISABLE_JIT=1)")
     p = sub.add_parser("deps", help="which compiled modules a mutant of MODULE recompiles")
     p.add_argument("module")
     p = sub.add_parser("_test", help=argparse.SUPPRESS)
@@ -844,7 +881,7 @@ def main(argv=None) -> int:
             print(result.test_outcome, (result.output or "")[-2000:])
         return 0
     if args.cmd == "try":
-        return 1 if try_mutant(work, args.job, args.tests, args.current) == 0 else 0
+        return 1 if try_mutant(work, args.job, args.tests, args.current, args.interpreter) == 0 else 0
     return 2
 
 

@@ -172,6 +172,21 @@ def test_pedestal_starts_sliding_while_the_statue_rocks():
     assert ("SLIP", "ROCK", "SLIDE_ROCK") in {e[1:] for e in events}
 
 
+def test_statue_falls_while_the_pedestal_slides():
+    """The statue falls while the pedestal slides faster (0.43 m/s) than it has ever been displaced
+    (0.11 m): the summary's peak sliding at the fall is |u|, which only the pedestal's stops
+    and the fall itself can raise (u is monotone while it slides). Kills the mutant that read
+    |u̇| there (bench/MUTATION.md, 942d2420)."""
+    statue = rk.Statue(width=0.4, height=3.0, mass=1.0, restitution=0.8)
+    pedestal = rk.Pedestal(mass=1.0, friction=rk.Friction(static=0.2, kinetic=0.16))
+    c, r = _both(rk.System(statue=statue, pedestal=pedestal), rk.SinePulse(amplitude=4.0, frequency=1.2))
+    events = _assert_agree(c, r)
+    assert events[-1][1] == "FALL" and r.status == c.status == "overturned"
+    assert abs(c.u_dot[-1]) > 3.0 * np.max(np.abs(c.u))  # the fall's |u̇| would show in a wrong peak
+    assert c.summary()["peak_sliding"] == pytest.approx(r.peak_sliding, abs=U_TOL)
+    assert c.summary()["peak_sliding"] == pytest.approx(np.max(np.abs(r.u)), abs=U_TOL)
+
+
 # ---------------------------------------------------------------------------------------------
 # A record, pulses, pure sliding
 # ---------------------------------------------------------------------------------------------
