@@ -139,6 +139,11 @@ UNCOMPILED: dict[str, list[str]] = {
         "test_sliding_and_slide_rock.py", "test_statue_on_pedestal.py", "test_integrator_crosscheck.py",
         "test_crosscheck_mutants.py", "test_compiled_root_finders.py", "test_mutants.py",
     ],
+    # The stack engine's fast oracles pass uncompiled in ~15 s; its whole-run tests
+    # (test_stack_engine.py: 300 random stacks) take too long in the interpreter and stay compiled.
+    "stack/kinematics.py": ["test_stack_corners.py", "test_stack_modes.py", "test_stack_engine_parts.py"],
+    "stack/modes.py": ["test_stack_corners.py", "test_stack_modes.py", "test_stack_engine_parts.py"],
+    "stack/engine.py": ["test_stack_engine_parts.py"],
 }
 INTERPRETED = "killed in the interpreter (NUMBA_DISABLE_JIT=1), before any compilation"
 

@@ -1966,19 +1966,25 @@ def test_the_top_face_warning_comes_exactly_when_the_required_friction_passes_th
         assert any("would slip on the pedestal" in w for w in r.warnings) == warned
 
 
-def test_the_energy_scale_is_the_input_work_when_impacts_dissipate_it():
+@pytest.mark.parametrize("form", ["sin", "cos"])
+def test_the_energy_scale_is_the_input_work_when_impacts_dissipate_it(form):
     """The relative balance error is |E − E0 − W + D + D_impact| over the run's largest |E − E0|,
-    |W| or |D| (docs/verdicts.md). A block rocking through ten cycles of a sine harmonic loses at
-    its 45 impacts nearly all the work the floor puts in, so |W| (5.67 J) sets the scale, 8.8×
-    the largest |E − E0|. The scale the summary implies (balance error / relative error) against
-    the ledger computed here from the 1 ms samples with the sympy energy
-    (`tests/oracles/energy.py`): to 1e-9 (4e-11 measured; a sine form, whose acceleration is
-    continuous at the motion's end, keeps the ledger's quadrature at that accuracy). Kills
-    compiled.py:805 (the scale reading |D| in place of |W|, bench/MUTATION.md f2167f0b)."""
+    |W| or |D| (docs/verdicts.md). A block rocking through ten cycles of a harmonic loses at its
+    ~45 impacts nearly all the work the floor puts in, so |W| (3.7–5.7 J) sets the scale, more
+    than 5× the largest |E − E0|. The scale the summary implies (balance error / relative error)
+    against the ledger computed here from the 1 ms samples with the sympy energy
+    (`tests/oracles/energy.py`). Under the sine form |W| is largest at the end of the run, a step
+    end: the two agree to 1e-9 (4e-11 measured). Under the cos form it is largest inside a step,
+    and the solver reads its scale at step ends and events only: 3.7e-4 below the samples'
+    (measured), which changes a relative error of ~1e-10 by as much; so there the scale must lie
+    within 1e-3 below the ledger's and never above it. The cos form also ends with a jump of the
+    floor acceleration from 4 m/s² to 0 at a saved sample, where the ledger takes each side's own
+    limit (until 2026-12-01 it used one value for both, and its own balance was 1.6e-4 off).
+    Kills compiled.py:805 (the scale reading |D| in place of |W|, bench/MUTATION.md f2167f0b)."""
     from oracles import energy
 
     block = rk.Statue(width=0.4, height=1.6, mass=3.0, restitution=0.6)
-    motion = rk.Harmonic(amplitude=4.0, frequency=2.0, cycles=10, form="sin")
+    motion = rk.Harmonic(amplitude=4.0, frequency=2.0, cycles=10, form=form)
     r = rk.simulate(rk.System(statue=block), motion, options=rk.Options(gravity=9.81, save_dt=1e-3))
     led = energy.ledger(r.t, r.state, r.regime, energy.lagrange_params(r.system, 9.81), motion.acceleration,
                         motion.vertical_acceleration, motion.breakpoints)
@@ -1986,7 +1992,8 @@ def test_the_energy_scale_is_the_input_work_when_impacts_dissipate_it():
     assert np.max(np.abs(led.input_work)) > 5.0 * np.max(np.abs(led.energy - led.energy[0]))
     assert np.max(np.abs(led.residual)) <= 1e-9 * led.scale
     e = r.energy
-    assert e["balance_error"] / e["relative_balance_error"] == pytest.approx(led.scale, rel=1e-9)
+    scale = e["balance_error"] / e["relative_balance_error"]
+    assert led.scale * (1.0 - (1e-9 if form == "sin" else 1e-3)) <= scale <= led.scale * (1.0 + 1e-9)
 
 
 def test_a_statue_released_tilted_and_turning_dissipates_its_initial_energy_and_reports_a_closed_balance():

@@ -135,35 +135,41 @@ def ledger(t, state, regimes, params: dict, a_g: Callable, a_v: Callable, breaks
     t = np.asarray(t, dtype=float)
     state = np.asarray(state, dtype=float)
     regimes = np.asarray(regimes, dtype=int)
-    ag, av = np.asarray(a_g(t), dtype=float), np.asarray(a_v(t), dtype=float)
     m1, m2 = float(params["m1"]), float(params["m2"])
     n = t.size
     energy = np.empty(n)
-    power_in = np.zeros(n)
-    power_fric = np.zeros(n)
     work, fric, jumps = np.zeros(n), np.zeros(n), np.zeros(n)
     losses = []
     segments = _segments(t, regimes, breaks)
-    for i0, i1 in segments:
-        sl = slice(i0, i1 + 1)
-        code = int(regimes[i0])
-        s = _pivot(state[sl, 2], state[sl, 3]) if code & ROCKS else 0
-        sigma = _majority_sign(state[sl, 1]) if code & SLIDES else 0
-        name = ("slide-" if code & SLIDES else "stick-") + ("rock" if code & ROCKS else "rest")
-        for i in range(i0, i1 + 1):
-            y = tuple(state[i])
-            pivot = s or 1  # at rest θ = θ̇ = 0 and either pivot describes the same state
-            energy[i] = lagrange.energy(params, y, s=pivot)
-            vx, vy = lagrange.statue_velocity_rel(params, y, s=pivot)
-            power_in[i] = -ag[i] * (m1 * y[1] + m2 * vx) - av[i] * m2 * vy
-            if sigma:
-                kw = {"sigma": sigma, **({"s": s} if s else {})}
-                force = lagrange.accelerations(name, params, y, ag[i], av[i], **kw)[3]
-                power_fric[i] = -force * y[1]
     # Integrate stretch by stretch, carrying the totals over events and breaks.
     w_total = d_total = j_total = 0.0
     previous_end = None
     for i0, i1 in segments:
+        sl = slice(i0, i1 + 1)
+        # The floor's acceleration at a stretch's end samples is its limit from inside the
+        # stretch: at a jump (a pulse's or a cos harmonic's end) the sample shared by two
+        # stretches has one value on each side, and the power there must use its own side's.
+        ts = t[sl].copy()
+        if ts.size > 1:
+            ts[0] += 1e-12 * max(1.0, abs(ts[0]))
+            ts[-1] -= 1e-12 * max(1.0, abs(ts[-1]))
+        ag, av = np.asarray(a_g(ts), dtype=float), np.asarray(a_v(ts), dtype=float)
+        code = int(regimes[i0])
+        s = _pivot(state[sl, 2], state[sl, 3]) if code & ROCKS else 0
+        sigma = _majority_sign(state[sl, 1]) if code & SLIDES else 0
+        name = ("slide-" if code & SLIDES else "stick-") + ("rock" if code & ROCKS else "rest")
+        power_in = np.zeros(ts.size)
+        power_fric = np.zeros(ts.size)
+        for k, i in enumerate(range(i0, i1 + 1)):
+            y = tuple(state[i])
+            pivot = s or 1  # at rest θ = θ̇ = 0 and either pivot describes the same state
+            energy[i] = lagrange.energy(params, y, s=pivot)
+            vx, vy = lagrange.statue_velocity_rel(params, y, s=pivot)
+            power_in[k] = -ag[k] * (m1 * y[1] + m2 * vx) - av[k] * m2 * vy
+            if sigma:
+                kw = {"sigma": sigma, **({"s": s} if s else {})}
+                force = lagrange.accelerations(name, params, y, ag[k], av[k], **kw)[3]
+                power_fric[k] = -force * y[1]
         if previous_end is not None and previous_end != i0:  # an instant saved twice
             loss = energy[previous_end] - energy[i0]
             losses.append((float(t[i0]), float(loss)))
@@ -172,9 +178,8 @@ def ledger(t, state, regimes, params: dict, a_g: Callable, a_v: Callable, breaks
             w_start, d_start = work[i0], fric[i0]
         else:
             w_start, d_start = w_total, d_total
-        sl = slice(i0, i1 + 1)
-        work[sl] = w_start + _cumulative(t[sl], power_in[sl])
-        fric[sl] = d_start + _cumulative(t[sl], power_fric[sl])
+        work[sl] = w_start + _cumulative(t[sl], power_in)
+        fric[sl] = d_start + _cumulative(t[sl], power_fric)
         jumps[sl] = j_total
         w_total, d_total = work[i1], fric[i1]
         previous_end = i1
