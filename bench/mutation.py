@@ -146,6 +146,12 @@ UNCOMPILED: dict[str, list[str]] = {
     "stack/engine.py": ["test_stack_engine_parts.py"],
 }
 INTERPRETED = "killed in the interpreter (NUMBA_DISABLE_JIT=1), before any compilation"
+# A mutant that only slows a run down (more steps, a longer search) can make the interpreted run
+# crawl where compiled code would finish: the interpreter stage gets this many times its own
+# unmutated time (at least INTERPRETER_MIN_S), then gives way to the compiled tests, which judge.
+INTERPRETER_FACTOR = 3.0
+INTERPRETER_MIN_S = 120.0
+INTERPRETER_DEFAULT_S = 240.0  # a session whose baseline did not time the stage
 
 # One meaningful mutant per site, as mutmut makes, instead of cosmic-ray's every-operator-to-every-
 # operator cross product (12 mutants per `*`, most of them type errors that any test kills). A
@@ -424,15 +430,19 @@ def _interpreted(env: dict) -> dict:
     return dict(env, NUMBA_DISABLE_JIT="1")
 
 
-def run_tests(work: Work, module: str, cache: Path, extra: list[str] | None = None, quiet=False) -> tuple[int, float]:
+def run_tests(work: Work, module: str, cache: Path, extra: list[str] | None = None, quiet=False,
+              stage_times: list | None = None) -> tuple[int, float]:
     """Both stages (the interpreter's, if the module has one, then the compiled tests), as a
-    mutant runs them: (pytest's exit code, seconds)."""
+    mutant runs them: (pytest's exit code, seconds). ``stage_times`` receives each stage's seconds."""
     t0 = time.monotonic()
     stages = [] if extra or module not in UNCOMPILED else [(_pytest_args(work, module, mapping=UNCOMPILED),
                                                              _interpreted(work.env(cache)))]
     stages.append((_pytest_args(work, module, extra), work.env(cache)))
     for args, env in stages:
+        t_stage = time.monotonic()
         proc = subprocess.run(args, cwd=work.tree, env=env, capture_output=quiet, text=True)
+        if stage_times is not None:
+            stage_times.append(time.monotonic() - t_stage)
         if proc.returncode:
             if quiet:
                 print(proc.stdout[-3000:], proc.stderr[-3000:])
@@ -483,13 +493,29 @@ def worker_test(work: Work, module: str) -> int:
         print(f"{MIRRORED} {folder}: {result.test_outcome}{timeout}")
         return 0 if result.test_outcome == "survived" else 1
     if module in UNCOMPILED:
-        code = subprocess.run(_pytest_args(work, module, mapping=UNCOMPILED), cwd=work.tree,
-                              env=_interpreted(work.env(work.worker_cache))).returncode
-        if code:
+        meta = json.loads(work.meta(module).read_text()) if work.meta(module).exists() else {}
+        limit = meta.get("interpreter_limit_s", INTERPRETER_DEFAULT_S)
+        code = _run_limited(_pytest_args(work, module, mapping=UNCOMPILED), work.tree,
+                            _interpreted(work.env(work.worker_cache)), limit)
+        if code is None:
+            print(f"the interpreter stage ran past {limit:.0f} s: on to the compiled tests", flush=True)
+        elif code:
             print(INTERPRETED)
             return code
     _fill_cache(work.base_cache, work.worker_cache, work.tree / "src", stale_modules(work.tree / "src", module))
     return subprocess.run(_pytest_args(work, module), cwd=work.tree, env=work.env(work.worker_cache)).returncode
+
+
+def _run_limited(args: list[str], cwd: Path, env: dict, limit: float) -> int | None:
+    """Run a command in a process group of its own; its exit code, or None (the whole group
+    killed) if it runs longer than ``limit`` seconds."""
+    proc = subprocess.Popen(args, cwd=cwd, env=env, start_new_session=True)
+    try:
+        return proc.wait(timeout=limit)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.wait()
+        return None
 
 
 def baseline(work: Work, module: str) -> dict:
@@ -500,13 +526,17 @@ def baseline(work: Work, module: str) -> dict:
         raise SystemExit(f"{module}: the tests fail on the unmutated copy (exit {code}); fix that first")
     stale = sorted(stale_modules(work.tree / "src", module))
     _fill_cache(work.base_cache, work.worker_cache, work.tree / "src", set(stale))
-    code, cold = run_tests(work, module, work.worker_cache, quiet=True)
+    stage_times = []
+    code, cold = run_tests(work, module, work.worker_cache, quiet=True, stage_times=stage_times)
     if code:
         raise SystemExit(f"{module}: the tests fail with a fresh cache (exit {code})")
     meta = {"warm_s": round(warm, 1), "per_mutant_s": round(cold, 1), "recompiled": stale,
             # A survivor runs every mapped test; when other processes share the CPU it takes 2-3
             # times the unloaded time, and a timeout counts as killed: keep a wide margin.
             "timeout_s": round(max(120.0, 5.0 * cold))}
+    if module in UNCOMPILED:
+        meta["interpreter_s"] = round(stage_times[0], 1)
+        meta["interpreter_limit_s"] = round(max(INTERPRETER_MIN_S, INTERPRETER_FACTOR * stage_times[0]))
     work.meta(module).write_text(json.dumps(meta, indent=1))
     return meta
 
