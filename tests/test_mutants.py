@@ -2173,6 +2173,27 @@ def test_the_required_top_friction_is_the_peak_of_the_base_force_ratio_between_s
     assert r.summary()["required_top_friction"] == pytest.approx(grid_peak, rel=1e-5)
 
 
+def test_the_required_top_friction_through_a_zeno_sequence_uses_the_state_at_each_event():
+    """A 0.4 × 2 m statue rocks down to rest after a one-sine pulse through 218 impacts, most of
+    them in a chattering sequence whose short steps read each impact off the 7th-order dense
+    output; there the solver evaluates the base forces at the event's own state. The summary's
+    required_top_friction must equal the largest |Px|/Py over saved samples every 0.1 ms with
+    |θ| ≤ α (Response.contact_forces, checked against the sympy derivation elsewhere): 5.7e-6
+    apart (measured; stages and samples see different instants), so 1e-5. The mass is chosen
+    so that the floor's input work, which stays at 2.99 J after the pulse, would give a ratio of
+    0.66 if read as θ̇ (rad/s) at those events: kills compiled.py:724 (θ̇ taken from the state's
+    input-work entry, bench/MUTATION.md 868ff236)."""
+    statue = rk.Statue(width=0.4, height=2.0, mass=26.5)
+    r = rk.simulate(rk.System(statue=statue), rk.SinePulse(amplitude=3.0, frequency=2.0),
+                    options=rk.Options(save_dt=1e-4))
+    assert r.status == "completed" and r.summary()["impacts"] > 200
+    assert r.energy["input_work"] == pytest.approx(2.99, abs=0.01)
+    forces = r.contact_forces()
+    inside = ((r.regime & 1) != 0) & (np.abs(r.theta) <= r.alpha) & (forces["Py"] > 0)
+    grid_peak = float(np.max(forces["top_friction_ratio"][inside]))
+    assert r.summary()["required_top_friction"] == pytest.approx(grid_peak, rel=1e-5)
+
+
 def test_the_pedestal_uplift_warning_compares_the_floor_pressure_centre_with_the_half_width():
     """A 0.2 × 1.2 m statue rocks on a 500 kg, 1 m tall pedestal held by μ = 1 (it never slides)
     under 3 m/s² at 2 Hz. The floor's normal force acts at x_N (moment balance of the pedestal,
