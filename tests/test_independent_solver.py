@@ -175,8 +175,9 @@ def test_pedestal_starts_sliding_while_the_statue_rocks():
 def test_statue_falls_while_the_pedestal_slides():
     """The statue falls while the pedestal slides faster (0.43 m/s) than it has ever been displaced
     (0.11 m): the summary's peak sliding at the fall is |u|, which only the pedestal's stops
-    and the fall itself can raise (u is monotone while it slides). Kills the mutant that read
-    |u̇| there (bench/MUTATION.md, 942d2420)."""
+    and the fall itself can raise (u is monotone while it slides), and its peak rotation is
+    π/2. Kills the mutants that read |u̇| or |θ̇| there (bench/MUTATION.md, 942d2420 and
+    fa540d14)."""
     statue = rk.Statue(width=0.4, height=3.0, mass=1.0, restitution=0.8)
     pedestal = rk.Pedestal(mass=1.0, friction=rk.Friction(static=0.2, kinetic=0.16))
     c, r = _both(rk.System(statue=statue, pedestal=pedestal), rk.SinePulse(amplitude=4.0, frequency=1.2))
@@ -185,6 +186,10 @@ def test_statue_falls_while_the_pedestal_slides():
     assert abs(c.u_dot[-1]) > 3.0 * np.max(np.abs(c.u))  # the fall's |u̇| would show in a wrong peak
     assert c.summary()["peak_sliding"] == pytest.approx(r.peak_sliding, abs=U_TOL)
     assert c.summary()["peak_sliding"] == pytest.approx(np.max(np.abs(r.u)), abs=U_TOL)
+    # likewise the peak rotation is |θ| = π/2 at the fall, where |θ̇| is larger (kills fa540d14)
+    assert abs(c.theta_dot[-1]) > 1.5 * math.pi / 2
+    assert c.peak_rotation == pytest.approx(r.peak_rotation, abs=THETA_TOL)
+    assert c.peak_rotation == pytest.approx(math.pi / 2, abs=THETA_TOL)
 
 
 # ---------------------------------------------------------------------------------------------
