@@ -441,14 +441,20 @@ def _interpreted(env: dict) -> dict:
     return dict(env, NUMBA_DISABLE_JIT="1")
 
 
+def _interpreter_stage(work: Work, module: str, cache: Path) -> tuple[list[str], dict] | None:
+    """(pytest command, environment) of the module's interpreter stage, or None if it has none."""
+    if module not in UNCOMPILED:
+        return None
+    return _pytest_args(work, module, mapping=UNCOMPILED), _interpreted(work.env(cache))
+
+
 def run_tests(work: Work, module: str, cache: Path, extra: list[str] | None = None, quiet=False,
               stage_times: list | None = None) -> tuple[int, float]:
     """Both stages (the interpreter's, if the module has one, then the compiled tests), as a
     mutant runs them: (pytest's exit code, seconds). ``stage_times`` receives each stage's seconds."""
     t0 = time.monotonic()
-    stages = [] if extra or module not in UNCOMPILED else [(_pytest_args(work, module, mapping=UNCOMPILED),
-                                                             _interpreted(work.env(cache)))]
-    stages.append((_pytest_args(work, module, extra), work.env(cache)))
+    first = None if extra else _interpreter_stage(work, module, cache)
+    stages = ([first] if first else []) + [(_pytest_args(work, module, extra), work.env(cache))]
     for args, env in stages:
         t_stage = time.monotonic()
         proc = subprocess.run(args, cwd=work.tree, env=env, capture_output=quiet, text=True)
@@ -503,11 +509,11 @@ def worker_test(work: Work, module: str) -> int:
         timeout = " (timeout)" if result.output == "timeout" else ""
         print(f"{MIRRORED} {folder}: {result.test_outcome}{timeout}")
         return 0 if result.test_outcome == "survived" else 1
-    if module in UNCOMPILED:
+    first = _interpreter_stage(work, module, work.worker_cache)
+    if first:
         meta = json.loads(work.meta(module).read_text()) if work.meta(module).exists() else {}
         limit = meta.get("interpreter_limit_s", INTERPRETER_DEFAULT_S)
-        code = _run_limited(_pytest_args(work, module, mapping=UNCOMPILED), work.tree,
-                            _interpreted(work.env(work.worker_cache)), limit)
+        code = _run_limited(*first, work.tree, limit)
         if code is None:
             print(f"the interpreter stage ran past {limit:.0f} s: on to the compiled tests", flush=True)
         elif code:
@@ -517,7 +523,7 @@ def worker_test(work: Work, module: str) -> int:
     return subprocess.run(_pytest_args(work, module), cwd=work.tree, env=work.env(work.worker_cache)).returncode
 
 
-def _run_limited(args: list[str], cwd: Path, env: dict, limit: float) -> int | None:
+def _run_limited(args: list[str], env: dict, cwd: Path, limit: float) -> int | None:
     """Run a command in a process group of its own; its exit code, or None (the whole group
     killed) if it runs longer than ``limit`` seconds."""
     proc = subprocess.Popen(args, cwd=cwd, env=env, start_new_session=True)

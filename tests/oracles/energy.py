@@ -151,8 +151,10 @@ def ledger(t, state, regimes, params: dict, a_g: Callable, a_v: Callable, breaks
         # stretches has one value on each side, and the power there must use its own side's.
         ts = t[sl].copy()
         if ts.size > 1:
-            ts[0] += 1e-12 * max(1.0, abs(ts[0]))
-            ts[-1] -= 1e-12 * max(1.0, abs(ts[-1]))
+            # (never past a quarter of the stretch, which may be a sliver between two events)
+            inward = min(1e-12 * max(1.0, abs(ts[0]), abs(ts[-1])), 0.25 * (ts[-1] - ts[0]))
+            ts[0] += inward
+            ts[-1] -= inward
         ag, av = np.asarray(a_g(ts), dtype=float), np.asarray(a_v(ts), dtype=float)
         code = int(regimes[i0])
         s = _pivot(state[sl, 2], state[sl, 3]) if code & ROCKS else 0
