@@ -371,6 +371,55 @@ def test_max_events_stops_like_compiled():
     assert r["t"][-1] <= r["end_time"] < 1.0
 
 
+def test_a_run_that_starts_at_a_later_time_matches_compiled():
+    """Both integrators take a start time t0 (``integrate_crosscheck`` and the compiled
+    ``integrate``; ``simulate`` always starts at 0). The block, at rest, starts at t0 = 0.2 s, the
+    first sample of a record that jumps there from 0 to 0.29 g (above the block's threshold,
+    0.2 g) for one sample interval, is still from 0.3 s to 0.6 s and then shakes: it rocks from
+    t0 on and impacts five times (0.368 s to 1.226 s) up to the run's end at 1.5 s. The grid
+    t0 + k·0.01 s, the saved rows, their regimes and the event table are the compiled solver's
+    (times within 1e-9 s, states within 1e-8).
+
+    Kills, on today's source (ids of the session in bench/MUTATION.md, twenty-sixth round):
+    crosscheck.py:270 (the grid t0 − k·dt), crosscheck.py:327 (the motion's piece for the initial
+    regime taken at t0 − ½(t_stop − t0), before the record, or at t0 + ½(t_stop + t0), the still
+    stretch: the block is said to be at rest at t0 and lifts off there at once, one UPLIFT row
+    more)."""
+    from rocking.results.response import split_saved_codes
+    from rocking.solver.compiled import N_STATE, integrate
+
+    # sampled every 0.05 s from 0.2 s: 0.29 g for one interval, still from 0.3 s to 0.6 s, then a
+    # 1.5 Hz sine of 0.35 g
+    tt = 0.2 + 0.05 * np.arange(21)
+    values = np.where(tt < 0.27, 0.29 * 9.81, np.where(tt < 0.6, 0.0, 0.35 * 9.81 * np.sin(2 * np.pi * 1.5 * (tt - 0.6))))
+    motion = GroundMotion(time=tt, values=values)
+    o = rk.Options(**COMPILED)
+    p = pack(rk.System(statue=BLOCK), gravity=o.gravity, normal_force=o.normal_force, impact=o.impact,
+             rest_velocity=o.rest_velocity)
+    t0, t_end = 0.2, 1.5
+    bp = crosscheck._breakpoints(motion, t0, t_end)
+    sh, sv = motion.signal(), motion.vertical_signal()
+    _, tc, yc, rc, ec = integrate(p, (sh.kind, sh.params, sh.time, sh.values), (sv.kind, sv.params, sv.time, sv.values),
+                                  bp, t0, t_end, np.zeros(N_STATE), o.rtol, o.atol, o.max_step, 0.01, True,
+                                  o.max_events, math.inf, np.zeros(1, dtype=np.int64))
+    x = rk.Options(**CROSSCHECK)
+    r = integrate_crosscheck(p, sh, sv, bp, t0, t_end, np.zeros(4), x.rtol, x.atol, x.max_step, 0.01, True,
+                             x.max_events)
+    kinds = [rk.EventKind(int(k)) for k in r["event_table"][:, 1]]
+    regime, _, _ = split_saved_codes(rc)
+    assert r["regime"][0] == regime[0] == 1 and kinds == [rk.EventKind.IMPACT] * 5  # rocking from t0 on
+    assert r["event_table"].shape == ec.shape
+    np.testing.assert_array_equal(r["event_table"][:, 1:4], ec[:, 1:4])
+    np.testing.assert_allclose(r["event_table"][:, 0], ec[:, 0], rtol=0, atol=TIME_TOL)
+    np.testing.assert_allclose(r["event_table"][:, 4:], ec[:, 4:], rtol=0, atol=ROW_TOL)
+    on = r["on_grid"]
+    np.testing.assert_allclose(r["t"][on], t0 + 0.01 * np.arange(131), rtol=0, atol=1e-12)
+    assert r["t"].shape == tc.shape
+    np.testing.assert_allclose(r["t"], tc, rtol=0, atol=TIME_TOL)
+    np.testing.assert_allclose(r["state"], yc[:, :4], rtol=0, atol=ROW_TOL)
+    np.testing.assert_array_equal(r["regime"], regime)
+
+
 # ---------------------------------------------------------------------------------------------
 # Output contract: save_dt, the event rows of integrate_crosscheck, the diagnostics, arguments
 # ---------------------------------------------------------------------------------------------

@@ -2226,3 +2226,20 @@ def test_the_pedestal_uplift_warning_compares_the_floor_pressure_centre_with_the
     t_warning = float(re.match(r"from t = ([0-9.]+) s", warning).group(1))
     first_over = float(wide.t[np.nonzero(x_n > big * 0.95)[0][0]])
     assert t_warning >= first_over - 1e-3
+
+
+def test_a_run_one_event_short_of_its_limit_saves_every_sample():
+    """The saved series holds every grid point and two rows per event (before and after it), and
+    is reserved for that at the start: n_grid + 2·max_events + 4 rows. A 0.4 × 2 m statue rocking
+    under 0.3 g at 2 Hz for a fixed 3 s makes 11 impacts, so 301 grid points + 22 rows. With
+    max_events = 12 (one more than it needs, so the run completes its 3 s) it must save the very
+    same 323 rows as with the default limit. Kills compiled.py:399 (the reservation
+    n_grid + 2·max_events − 4: 321 rows, the last two grid points silently dropped)."""
+    alone = rk.System(statue=rk.Statue(width=0.4, height=2.0, mass=50.0, restitution=0.9))
+    motion = rk.Harmonic(amplitude=0.3 * 9.81, frequency=2.0, cycles=4)
+    free = rk.simulate(alone, motion, duration=3.0)
+    n = len(free.events)
+    assert n == 11 and len(free.t) == 301 + 2 * n and free.t[-1] == 3.0
+    tight = rk.simulate(alone, motion, duration=3.0, options=rk.Options(max_events=n + 1))
+    assert tight.status == free.status == "still_moving"
+    assert np.array_equal(tight.t, free.t) and np.array_equal(tight.state, free.state)
