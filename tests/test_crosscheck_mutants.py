@@ -420,6 +420,33 @@ def test_a_run_that_starts_at_a_later_time_matches_compiled():
     np.testing.assert_array_equal(r["regime"], regime)
 
 
+def test_the_last_grid_point_after_a_last_segment_of_10_microseconds():
+    """The grid's last point may lie past the run's end by rounding: 3 × 0.1 s is
+    0.30000000000000004 s for a 0.3 s run. A segment's sampling takes a grid point up to
+    1e-12 of its length past its end, so after a 10 µs last segment (a record sample at
+    0.29999 s) that point falls to the end-of-run fill, which takes points up to 1e-9 s past the
+    end. The block, lifted by a 2 Hz sine record of 0.3 g, still rocks at 0.3 s: four grid
+    points, 0 to 0.3 s, the last one with the state at the end (the compiled solver's last row).
+
+    Kills, on today's source (twenty-sixth round): crosscheck.py:512 (the fill skipped:
+    ``status == "overturned"``, ``not (…)``), crosscheck.py:514 (``not …``), crosscheck.py:516
+    (``tg > t − 1e-9``, ``tg <= t + 1e-9``, ``not …``; the point left out), crosscheck.py:518
+    (the point not flagged as on the grid)."""
+    tt = np.array([0.05, 0.1, 0.15, 0.2, 0.25, 0.29999])
+    motion = GroundMotion(time=tt, values=0.3 * 9.81 * np.sin(2 * np.pi * 2.0 * tt))
+    c, r = _both(rk.System(statue=BLOCK), motion, duration=0.3, save_dt=0.1)
+    assert 3 * 0.1 > 0.3 and r["status"] == c.status == "still_moving"
+    np.testing.assert_array_equal(r["t"], 0.1 * np.arange(4))
+    # the compiled solver stamps that last row with the end time, 0.3 s
+    assert c.t[-1] == 0.3 and c.t[-2] == 0.2
+    for key, tol in (("theta", THETA_TOL), ("u", U_TOL), ("theta_dot", VELOCITY_TOL), ("u_dot", VELOCITY_TOL)):
+        assert r[key][-1] == pytest.approx(getattr(c, key)[-1], abs=tol), key
+    assert r["theta"][-1] != 0.0
+    _assert_rows_agree(c, r)
+    raw = _raw(rk.System(statue=BLOCK), motion, 0.3, (0.0, 0.0, 0.0, 0.0), save_dt=0.1)
+    assert raw["t"][-1] == 0.1 * 3 and raw["on_grid"][-1]
+
+
 # ---------------------------------------------------------------------------------------------
 # Output contract: save_dt, the event rows of integrate_crosscheck, the diagnostics, arguments
 # ---------------------------------------------------------------------------------------------
