@@ -384,7 +384,9 @@ def test_a_run_that_starts_at_a_later_time_matches_compiled():
     crosscheck.py:270 (the grid t0 − k·dt), crosscheck.py:327 (the motion's piece for the initial
     regime taken at t0 − ½(t_stop − t0), before the record, or at t0 + ½(t_stop + t0), the still
     stretch: the block is said to be at rest at t0 and lifts off there at once, one UPLIFT row
-    more)."""
+    more). Breakpoints before and at t0 passed in too (0.05, 0.1 and 0.2 s) give the same run:
+    kills crosscheck.py:283 (``<=`` / ``>=`` / ``not`` / ``or`` in the loop that passes them over)
+    and :284 (two passed at a time, which skips the one at 0.25 s)."""
     from rocking.results.response import split_saved_codes
     from rocking.solver.compiled import N_STATE, integrate
 
@@ -418,6 +420,12 @@ def test_a_run_that_starts_at_a_later_time_matches_compiled():
     np.testing.assert_allclose(r["t"], tc, rtol=0, atol=TIME_TOL)
     np.testing.assert_allclose(r["state"], yc[:, :4], rtol=0, atol=ROW_TOL)
     np.testing.assert_array_equal(r["regime"], regime)
+    # breakpoints before and at t0 (the record's start) are passed over: the same run
+    early = np.concatenate(([0.05, 0.1, t0], bp))
+    again = integrate_crosscheck(p, sh, sv, early, t0, t_end, np.zeros(4), x.rtol, x.atol, x.max_step, 0.01, True,
+                                 x.max_events)
+    np.testing.assert_array_equal(again["event_table"], r["event_table"])
+    np.testing.assert_array_equal(again["t"], r["t"])
 
 
 def test_the_last_grid_point_after_a_last_segment_of_10_microseconds():
