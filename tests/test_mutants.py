@@ -2243,3 +2243,19 @@ def test_a_run_one_event_short_of_its_limit_saves_every_sample():
     tight = rk.simulate(alone, motion, duration=3.0, options=rk.Options(max_events=n + 1))
     assert tight.status == free.status == "still_moving"
     assert np.array_equal(tight.t, free.t) and np.array_equal(tight.state, free.state)
+
+
+def test_a_run_the_solver_cannot_step_ends_step_failed_and_says_undetermined():
+    """A floor acceleration of 1e150 m/s² makes every error estimate of the first step non-finite:
+    the solver shrinks the step tenfold each time, and once it is below 1e-14 s it stops with
+    status step_failed at t = 0, without a step taken. The verdict says the run is undetermined
+    (not "did not overturn"), and by default the failure raises. The path a run takes when its
+    step size underflows, checked on the solver itself (test_cli.py only fakes the error)."""
+    alone = rk.System(statue=rk.Statue(width=0.4, height=2.0, mass=50.0))
+    motion = rk.Harmonic(amplitude=1e150, frequency=2.0, cycles=2)
+    r = rk.simulate(alone, motion, throw=False)
+    assert r.status == "step_failed" and r.end_time == 0.0 and r.events == []
+    assert r.verdict.startswith("undetermined") and "step_failed" in r.verdict
+    assert not r.overturned
+    with pytest.raises(rk.SimulationError, match="step size underflow"):
+        rk.simulate(alone, motion)
