@@ -467,6 +467,28 @@ def run_tests(work: Work, module: str, cache: Path, extra: list[str] | None = No
     return proc.returncode, time.monotonic() - t0
 
 
+def interpreter_coverage(module: str) -> int:
+    """Which lines of ``module`` its interpreter stage never runs (coverage.py, on the
+    repository's own source, NUMBA_DISABLE_JIT=1 so that the @njit code runs as Python). A
+    surviving mutant on such a line is not reached by those tests: it needs a new case, not a
+    reason. Returns coverage's exit code."""
+    if module not in UNCOMPILED:
+        raise SystemExit(f"{module} has no interpreter stage (UNCOMPILED)")
+    target = REPO / "src" / "rocking" / module
+    with tempfile.TemporaryDirectory() as tmp:
+        data = str(Path(tmp) / "coverage.data")
+        files = [str(REPO / "tests" / t) for t in UNCOMPILED[module]]
+        env = _interpreted(dict(os.environ, NUMBA_NUM_THREADS="1"))
+        code = subprocess.run([sys.executable, "-m", "coverage", "run", f"--data-file={data}", f"--include={target}",
+                               "-m", "pytest", "-q", "-o", "addopts=", "-p", "no:cacheprovider", *files],
+                              cwd=REPO, env=env).returncode
+        if code:
+            print(f"the interpreter stage's tests fail on the repository (exit {code})")
+            return code
+        return subprocess.run([sys.executable, "-m", "coverage", "report", "-m", f"--data-file={data}"],
+                              cwd=REPO).returncode
+
+
 def _diff_body(lines) -> tuple[str, ...]:
     # a mutant's diff without its file names, which name the folder it ran in
     return tuple(line for line in lines if not line.startswith(("---", "+++")))
@@ -853,6 +875,8 @@ def main(argv=None) -> int:
     p.add_argument("--current", action="store_true",
                    help="mutate the repository's current source, not the copy's (a changed module: placed by the line's text)")
     p.add_argument("--interpreter", action="store_true", help="run the tests uncompiled (NUMBA_DISABLE_JIT=1)")
+    p = sub.add_parser("coverage", help="lines of MODULE its interpreter stage never runs (coverage.py)")
+    p.add_argument("module")
     p = sub.add_parser("deps", help="which compiled modules a mutant of MODULE recompiles")
     p.add_argument("module")
     p = sub.add_parser("_test", help=argparse.SUPPRESS)
@@ -868,6 +892,8 @@ def main(argv=None) -> int:
     if args.cmd == "plan":
         plan(work, args.modules or list(MODULES))
         return 0
+    if args.cmd == "coverage":
+        return interpreter_coverage(args.module)
     if args.cmd == "deps":
         print(sorted(stale_modules(REPO / "src", args.module)))
         return 0
