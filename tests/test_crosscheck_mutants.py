@@ -384,8 +384,9 @@ def test_a_run_that_starts_at_a_later_time_matches_compiled():
     crosscheck.py:270 (the grid t0 − k·dt), crosscheck.py:327 (the motion's piece for the initial
     regime taken at t0 − ½(t_stop − t0), before the record, or at t0 + ½(t_stop + t0), the still
     stretch: the block is said to be at rest at t0 and lifts off there at once, one UPLIFT row
-    more). Breakpoints before and at t0 passed in too (0.05, 0.1 and 0.2 s) give the same run:
-    kills crosscheck.py:283 (``<=`` / ``>=`` / ``not`` / ``or`` in the loop that passes them over)
+    more). Breakpoints before and at t0 passed in too (0.05, 0.1 and 0.2 s) give the same run,
+    in both (the compiled solver passes them over at compiled.py:468, which nothing else
+    reaches: ``simulate`` starts at 0 and passes only later breakpoints): kills crosscheck.py:283 (``<=`` / ``>=`` / ``not`` / ``or`` in the loop that passes them over)
     and :284 (two passed at a time, which skips the one at 0.25 s)."""
     from rocking.results.response import split_saved_codes
     from rocking.solver.compiled import N_STATE, integrate
@@ -426,6 +427,12 @@ def test_a_run_that_starts_at_a_later_time_matches_compiled():
                                  x.max_events)
     np.testing.assert_array_equal(again["event_table"], r["event_table"])
     np.testing.assert_array_equal(again["t"], r["t"])
+    _, tc2, yc2, _, ec2 = integrate(p, (sh.kind, sh.params, sh.time, sh.values), (sv.kind, sv.params, sv.time, sv.values),
+                                    early, t0, t_end, np.zeros(N_STATE), o.rtol, o.atol, o.max_step, 0.01, True,
+                                    o.max_events, math.inf, np.zeros(1, dtype=np.int64))
+    np.testing.assert_array_equal(ec2, ec)
+    np.testing.assert_array_equal(tc2, tc)
+    np.testing.assert_array_equal(yc2, yc)
 
 
 def test_the_last_grid_point_after_a_last_segment_of_10_microseconds():
