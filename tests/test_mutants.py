@@ -2259,3 +2259,18 @@ def test_a_run_the_solver_cannot_step_ends_step_failed_and_says_undetermined():
     assert not r.overturned
     with pytest.raises(rk.SimulationError, match="step size underflow"):
         rk.simulate(alone, motion)
+
+
+def test_a_frictionless_top_face_is_flagged_as_soon_as_the_statue_rocks():
+    """A top face with μs = 0 (given, not omitted) holds nothing: once the statue rocks its base
+    pushes sideways, |P_x| > 0 = μs·P_y, and the run must warn that the statue would slip on the
+    pedestal, from the first rocking instant on. Kills compiled.py:817 (the check made only for
+    μ_top > 0: a frictionless top face never flagged)."""
+    statue = rk.Statue(width=0.4, height=2.0, mass=50.0, friction=rk.Friction(static=0.0, kinetic=0.0))
+    pedestal = rk.Pedestal(mass=100.0, friction=rk.Friction(static=0.8, kinetic=0.7))
+    r = rk.simulate(rk.System(statue=statue, pedestal=pedestal), rk.Harmonic(amplitude=3.0, frequency=2.0, cycles=2))
+    first_rock = r.summary()["first_rocking_time"]
+    assert first_rock is not None
+    (slip,) = [w for w in r.warnings if "slip on the pedestal" in w]
+    t_slip = float(re.match(r"from t = ([0-9.]+) s", slip).group(1))
+    assert first_rock <= t_slip <= first_rock + 0.05

@@ -9,6 +9,7 @@ from oracles import closed_forms as cf
 from oracles import energy, lagrange
 
 import rocking as rk
+from rocking.excitation.record import GroundMotion
 from rocking.models import dynamics
 from rocking.models.parameters import pack
 from rocking.models.regimes import Regime
@@ -282,6 +283,37 @@ def test_required_top_friction_of_a_statue_at_rest_is_the_largest_transmitted_ac
     r = rk.simulate(on_pedestal(st), rk.Harmonic(amplitude=6.75, frequency=1.2, cycles=1), options=OPTS)
     assert r.summary()["first_rocking_time"] is None
     assert r.summary()["required_top_friction"] == pytest.approx(0.4, abs=1e-9)
+
+
+@pytest.mark.parametrize("kind", ["cos", "sin", "record", "record-with-vertical"])
+def test_required_top_friction_of_a_pedestal_that_never_slides(kind):
+    """A squat statue (tan α = 0.83) on a pedestal held by μs = 0.8 moves with the floor for the
+    whole run: nothing slides or rocks, so the solver crosses every stretch at rest without a
+    step. Its base still needs |P_x|/P_y = |a_g|/(g + a_v), the floor's: the summary's
+    required_top_friction must be the largest of that, A/g under a 3 m/s² harmonic (its peak at
+    t = 0 for cos, inside the run for sin), max |a_i|/(g + a_v,i) over the samples of a
+    record (piecewise linear: the ratio peaks at a sample). Until 2026-12-01 it was 0.0 in all
+    four (the rest crossing skipped the check), and the report's top-face check passed a
+    statue whose top face (μs = 0.1) cannot hold it. Closed forms, to 1e-12."""
+    statue = rk.Statue(width=1.0, height=1.2, mass=50.0, friction=rk.Friction(static=0.1, kinetic=0.1))
+    system = on_pedestal(statue, m1=100.0, friction=rk.Friction(static=0.8, kinetic=0.7))
+    if kind in ("cos", "sin"):
+        motion = rk.Harmonic(amplitude=3.0, frequency=2.0, cycles=2, form=kind)
+        need = 3.0 / G
+    else:
+        t = np.round(np.arange(0.0, 4.0, 0.01), 10)
+        rng = np.random.default_rng(0)
+        a = 2.0 * np.convolve(rng.normal(size=t.size), np.ones(5) / 5, mode="same")
+        av = np.convolve(rng.normal(size=t.size), np.ones(5) / 5, mode="same") if kind == "record-with-vertical" else None
+        motion = GroundMotion(time=t, values=a, vertical=av)
+        need = float(np.max(np.abs(a) / (G + (av if av is not None else 0.0))))
+    r = rk.simulate(system, motion, options=OPTS)
+    s = r.summary()
+    assert r.events == [] and s["first_sliding_time"] is None and s["first_rocking_time"] is None
+    assert 0.3 < need < 0.35
+    assert s["required_top_friction"] == pytest.approx(need, rel=1e-12)
+    # what the saved samples say (Response.contact_forces, from the saved states)
+    assert np.nanmax(r.contact_forces()["top_friction_ratio"]) <= need * (1 + 1e-12)
 
 
 def test_violation_intervals_agree_with_the_first_times_in_the_summary():

@@ -362,6 +362,33 @@ def _save_row(y_out, n, y):
 
 
 @njit(cache=True, _nrt=False)
+def _rest_base_ratio(p, y, loc, t):
+    """|P_x|/P_y under the statue's base at rest at time t (0 where P_y ≤ 0 or |θ| > α, as in
+    the checks of the event loop)."""
+    a, av = _ground(loc, t)
+    _, _, _, _, _, px, py, _, _ = evaluate_all(p, 0, 0, y[1], y[2], y[3], a, av)
+    if py > 0.0 and abs(y[2]) <= p[ALPHA]:
+        return abs(px) / py
+    return 0.0
+
+
+@njit(cache=True, _nrt=False)
+def _rest_top_ratio(p, y, loc, t_a, t_b):
+    """The largest |P_x|/P_y the statue's base needs while everything rests from t_a to t_b, a
+    stretch the rest crossing passes without a step (so without the loop's checks). At rest the
+    statue moves with the floor: P_x = m₂·a_g, P_y = m₂·(g + a_v) (derivation §3.5). On a
+    piecewise-linear piece that ratio of two linear functions is largest at an end; on a
+    harmonic one (no vertical part) at an end or where |A·cos(ωτ + φ)| = A."""
+    best = max(_rest_base_ratio(p, y, loc, t_a), _rest_base_ratio(p, y, loc, t_b))
+    if loc[0] == LOCAL_COSINE and loc[LOCAL_SIZE] == LOCAL_ZERO and loc[2] > 0.0:
+        omega, phase = loc[2], loc[3]
+        tau = (math.ceil((omega * t_a + phase) / math.pi) * math.pi - phase) / omega
+        if t_a < tau < t_b:
+            best = max(best, _rest_base_ratio(p, y, loc, tau))
+    return best
+
+
+@njit(cache=True, _nrt=False)
 def _hold(t_out, y_out, r_out, n_out, cap, next_grid, n_grid, t0, save_dt, t_limit, y, regime, t_fixed):
     """Save the grid points up to ``t_limit`` while the state ``y`` does not change (at rest, or
     the last point reached only up to rounding), stamped with their grid times, or with
@@ -529,6 +556,7 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                     a1, av1 = _ground(loc, t_stop)
                     evaluate_guards(p, 0, 0, y, a1, av1, exceeded, g1)
             if t_quiet > t:
+                top_ratio = max(top_ratio, _rest_top_ratio(p, y, loc, t, t_quiet))
                 if save:
                     n_out, next_grid = _hold(t_out, y_out, r_out, n_out, cap, next_grid, n_grid, t0, save_dt,
                                              t_quiet + 1e-12, y, 0, math.nan)
