@@ -17,6 +17,7 @@ import rocking
 from rocking.analyses.paper import case_named, paper_motion, variant_setup
 from rocking.contact.friction import Friction
 from rocking.excitation.base import KIND_RAMP, ZERO_SIGNAL, AbstractMotion, Signal
+from rocking.excitation.record import GroundMotion
 from rocking.report.stack import build_stack_content
 from rocking.stack import Block, Interface, Stack, simulate_stack
 
@@ -1252,3 +1253,26 @@ def test_the_exact_pose_of_a_landing_is_booked_in_the_ledger():
     assert r.status == "completed" and not r.overturned
     assert len(r.events) > 500  # the long chatter this is about
     assert _ledger_error(stack, r) <= 1e-8
+
+
+def test_the_friction_a_stack_at_rest_needs_under_a_record_is_the_floor_s():
+    """A squat statue on a pedestal held by μs = 0.8, under a 4 s filtered-noise record of peak
+    0.34 g: nothing slides, rocks or lifts, so the engine jumps from sample to sample at rest
+    without a step. Each interface still needs |F|/N = |a_g|/g (the whole stack moves with the
+    floor), largest at a sample: the summary's required friction of both interfaces must be
+    max |a_i|/g, to 1e-12. Until 2026-12-01 the jumps skipped the tracking and it said 0.026,
+    the ratio at the run's few tracked instants."""
+    stack = Stack(blocks=(Block(name="pedestal", width=0.8, height=0.5, mass=100.0),
+                          Block(name="statue", width=0.5, height=0.6, mass=50.0)),
+                  interfaces=(Interface(friction=Friction(static=0.8, kinetic=0.7)), Interface()))
+    t = np.round(np.arange(0.0, 4.0, 0.01), 10)
+    rng = np.random.default_rng(0)
+    a = 2.0 * np.convolve(rng.normal(size=t.size), np.ones(5) / 5, mode="same")
+    options = rocking.Options()
+    r = simulate_stack(stack, GroundMotion(time=t, values=a), options=options)
+    s = r.summary()
+    need = float(np.max(np.abs(a))) / options.gravity
+    assert 0.3 < need < 0.35
+    assert all(b["first_sliding_time"] is None and b["first_rocking_time"] is None for b in s["blocks"])
+    for interface in s["interfaces"]:
+        assert interface["required_friction"] == pytest.approx(need, rel=1e-12)

@@ -559,6 +559,12 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                     n_out += 1
                 next_grid += 1
             t = t_to
+            if first < 0:
+                # At rest every block moves with the floor and the friction an interface needs,
+                # |F|/N, is a ratio of two functions linear in time over the jump: largest at one
+                # of its ends. The jump's start was tracked (a step's end, an event or the last
+                # jump's end); track its end too.
+                _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
             if first >= 0:
                 band_ok = False
                 k_ev = first // N_GUARD_SLOTS
