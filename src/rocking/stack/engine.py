@@ -429,6 +429,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
     band_h = np.empty(n * N_GUARD_SLOTS)
     band_v = np.empty(n * N_GUARD_SLOTS)
     band_ok = False
+    rest_q = -1.0  # the largest |a_h|/(g + a_v) tracked at the end of a jump at rest
     n_out = 0
     n_ev = 0
     next_grid = 0
@@ -560,11 +561,17 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 next_grid += 1
             t = t_to
             if first < 0:
-                # At rest every block moves with the floor and the friction an interface needs,
-                # |F|/N, is a ratio of two functions linear in time over the jump: largest at one
-                # of its ends. The jump's start was tracked (a step's end, an event or the last
-                # jump's end); track its end too.
-                _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
+                # At rest every block moves with the floor, so each interface carries the mass
+                # above it times (a_h, g + a_v): the friction it needs, |F|/N, is
+                # |a_h|/(g + a_v) for all of them, a ratio of two functions linear in time over
+                # the jump, largest at one of its ends. The jump's start was tracked (a step's
+                # end, an event or the last jump's end); its end is tracked when it exceeds every
+                # such end so far (tracking each one cost a full evaluation per record sample).
+                ah_end, av_end = _ground(loc, t)
+                q = abs(ah_end) / (gravity + av_end) if gravity + av_end > 0.0 else math.inf
+                if q > rest_q:
+                    rest_q = q
+                    _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
             if first >= 0:
                 band_ok = False
                 k_ev = first // N_GUARD_SLOTS
