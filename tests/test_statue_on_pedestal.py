@@ -285,20 +285,25 @@ def test_required_top_friction_of_a_statue_at_rest_is_the_largest_transmitted_ac
     assert r.summary()["required_top_friction"] == pytest.approx(0.4, abs=1e-9)
 
 
-@pytest.mark.parametrize("kind", ["cos", "sin", "record", "record-with-vertical"])
+@pytest.mark.parametrize("kind", ["cos", "sin", "ricker", "record", "record-with-vertical"])
 def test_required_top_friction_of_a_pedestal_that_never_slides(kind):
     """A squat statue (tan α = 0.83) on a pedestal held by μs = 0.8 moves with the floor for the
     whole run: nothing slides or rocks, so the solver crosses every stretch at rest without a
     step. Its base still needs |P_x|/P_y = |a_g|/(g + a_v), the floor's: the summary's
     required_top_friction must be the largest of that, A/g under a 3 m/s² harmonic (its peak at
     t = 0 for cos, inside the run for sin), max |a_i|/(g + a_v,i) over the samples of a
-    record (piecewise linear: the ratio peaks at a sample). Until 2026-12-01 it was 0.0 in all
-    four (the rest crossing skipped the check), and the report's top-face check passed a
-    statue whose top face (μs = 0.1) cannot hold it. Closed forms, to 1e-12."""
+    record (piecewise linear: the ratio peaks at a sample), |a_p|/g at the centre of a Ricker
+    pulse. Until 2026-12-01 it was 0.0 but for the Ricker pulse (the rest crossing skipped the
+    check), and the report's top-face check passed a statue whose top face (μs = 0.1) cannot
+    hold it. Under the Ricker pulse, where the solver steps at rest, it read the forces at the
+    steps' stages only and fell 0.4 % short until 2026-12-02. Closed forms, to 1e-12."""
     statue = rk.Statue(width=1.0, height=1.2, mass=50.0, friction=rk.Friction(static=0.1, kinetic=0.1))
     system = on_pedestal(statue, m1=100.0, friction=rk.Friction(static=0.8, kinetic=0.7))
     if kind in ("cos", "sin"):
         motion = rk.Harmonic(amplitude=3.0, frequency=2.0, cycles=2, form=kind)
+        need = 3.0 / G
+    elif kind == "ricker":
+        motion = rk.RickerPulse(amplitude=3.0, frequency=2.0)
         need = 3.0 / G
     else:
         t = np.round(np.arange(0.0, 4.0, 0.01), 10)
@@ -314,6 +319,69 @@ def test_required_top_friction_of_a_pedestal_that_never_slides(kind):
     assert s["required_top_friction"] == pytest.approx(need, rel=1e-12)
     # what the saved samples say (Response.contact_forces, from the saved states)
     assert np.nanmax(r.contact_forces()["top_friction_ratio"]) <= need * (1 + 1e-12)
+
+
+def _first_rest_slip(motion, mu):
+    """The first time a statue moving with the floor needs more than μ from its base,
+    |a_h(t)| > μ·(g + a_v(t)), from the motion's own formulas: bracketed on a grid of 1e-4 s
+    (shorter than a quarter of any swing here) and solved by brentq to 1e-15 s."""
+    from scipy.optimize import brentq
+
+    def excess(t):
+        return abs(float(motion.acceleration(t))) - mu * (G + float(motion.vertical_acceleration(t)))
+
+    grid = np.arange(0.0, motion.duration, 1e-4)
+    if isinstance(motion, GroundMotion):
+        grid = np.union1d(grid, motion.time)  # (its kinks)
+    above = np.nonzero([excess(t) > 0.0 for t in grid])[0]
+    assert above.size and above[0] > 0
+    k = above[0]
+    return brentq(excess, grid[k - 1], grid[k], xtol=1e-15, rtol=4 * np.finfo(float).eps)
+
+
+def _slip_warning_time(r):
+    """The time of the top-slip warning, to the bit (the summary's raw value)."""
+    from rocking.solver import compiled as C
+    assert sum("would slip on the pedestal" in w for w in r.warnings) == (0 if np.isnan(r.raw_summary[C.S_TOP_SLIP]) else 1)
+    return float(r.raw_summary[C.S_TOP_SLIP])
+
+
+@pytest.mark.parametrize("kind", ["sin", "ricker", "sine-pulse", "record-with-vertical"])
+def test_the_top_slip_warning_of_a_statue_at_rest_comes_when_its_base_first_needs_more_than_the_top_mu(kind):
+    """The statue and held pedestal of the test above, whose top face has μs = 0.2: the statue
+    never rocks, and its base needs |a_h|/(g + a_v), which passes 0.2 inside a stretch the
+    solver crosses at rest (or steps at rest, under the Ricker pulse). The run must warn that
+    the statue would slip, from the first instant that happens (solved here from the motion's
+    formulas by brentq): to 1e-12 s, as the solver bisects the crossing to the last bit and the
+    ratio's rounding (1e-16) over its slope (> 0.1 /s) is far below that. With μs 0.1 % above
+    the largest need there must be no warning, 0.1 % below one. Until 2026-12-02 no warning came
+    at rest at all: the check was made only while the statue rocked or at impacts."""
+    if kind == "sin":
+        motion = rk.Harmonic(amplitude=3.0, frequency=2.0, cycles=2, form="sin")
+    elif kind == "ricker":
+        motion = rk.RickerPulse(amplitude=3.0, frequency=2.0)
+    elif kind == "sine-pulse":
+        motion = rk.SinePulse(amplitude=-3.0, frequency=1.5, phase=0.4)
+    else:
+        t = np.round(np.arange(0.0, 4.0, 0.01), 10)
+        rng = np.random.default_rng(3)
+        a = 2.0 * np.convolve(rng.normal(size=t.size), np.ones(5) / 5, mode="same")
+        av = np.convolve(rng.normal(size=t.size), np.ones(5) / 5, mode="same")
+        motion = GroundMotion(time=t, values=a, vertical=av)
+
+    def run(mu):
+        statue = rk.Statue(width=1.0, height=1.2, mass=50.0, friction=rk.Friction(static=mu, kinetic=mu))
+        return rk.simulate(on_pedestal(statue, m1=100.0, friction=rk.Friction(static=0.8, kinetic=0.7)), motion,
+                           options=OPTS)
+
+    r = run(0.2)
+    assert r.events == [] and r.summary()["first_rocking_time"] is None
+    want = _first_rest_slip(motion, 0.2)
+    assert want > 0.01
+    assert _slip_warning_time(r) == pytest.approx(want, abs=1e-12)
+    need = r.summary()["required_top_friction"]
+    assert np.isnan(_slip_warning_time(run(1.001 * need)))
+    assert _slip_warning_time(run(0.999 * need)) > want
 
 
 def test_violation_intervals_agree_with_the_first_times_in_the_summary():

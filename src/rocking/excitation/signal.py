@@ -144,3 +144,51 @@ def cosine_band_exit(amplitude, omega, phase, t, t_stop, lo, hi):
     if to_exit <= 0.0:
         return t
     return min(t_stop, t + to_exit / omega)
+
+
+@njit(cache=True, inline="always")
+def crest_inside(loc, t_a, t_b):
+    """A time strictly inside (t_a, t_b) (s) where the horizontal floor acceleration |a_h| of
+    the localised motion ``loc`` has a local maximum of the largest height found there, or NaN
+    when it has none inside (a linear piece is largest at an end).
+
+    Why: at rest every face carries the mass above it times (a_h, g + a_v), so the friction it
+    needs is |a_h|/(g + a_v); over a stretch where a_v is constant (every non-linear motion
+    here has no vertical part) that peaks at an end or at this crest, and a solver that reads
+    the forces only at its step ends or stages misses the crest. A cosine's crests are where
+    ω t + φ is a multiple of π (all of height |A|: the first one is returned); a Ricker
+    wavelet's are at τ = t − t_0 = 0 (height |a_p|) and τ = ±√(3/2)/(π f) (2|a_p| e^(−3/2))."""
+    mode = loc[0]
+    if mode == LOCAL_COSINE:
+        omega, phase = loc[2], loc[3]
+        if omega <= 0.0:
+            return math.nan
+        tau = (math.floor((omega * t_a + phase) / math.pi) + 1.0) * math.pi
+        tau = (tau - phase) / omega
+        return tau if t_a < tau < t_b else math.nan
+    if mode == LOCAL_RICKER:
+        f, t0 = loc[2], loc[3]
+        if t_a < t0 < t_b:
+            return t0
+        side = math.sqrt(1.5) / (math.pi * f)
+        if t_a < t0 - side < t_b:
+            return t0 - side
+        if t_a < t0 + side < t_b:
+            return t0 + side
+    return math.nan
+
+
+@njit(cache=True, inline="always")
+def monotone_spacing(loc):
+    """A time step (s) short enough that no stretch of the horizontal floor acceleration of
+    ``loc`` that long holds more than one of its crests and zeros, so |a_h| there rises, falls,
+    or does one then the other: sampled at this spacing, a first crossing of a level lies
+    between the first sample above it and the one before, and nowhere earlier. A cosine's
+    crests and zeros lie π/(2ω) apart; a Ricker wavelet's at τ = 0, ±1/(√2 π f), ±√(3/2)/(π f),
+    at least 0.165/f apart. Infinite for a linear piece (|a_h| has one kink, at its zero)."""
+    mode = loc[0]
+    if mode == LOCAL_COSINE and loc[2] > 0.0:
+        return 0.25 * math.pi / loc[2]
+    if mode == LOCAL_RICKER and loc[2] > 0.0:
+        return 0.08 / loc[2]
+    return math.inf

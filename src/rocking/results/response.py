@@ -228,8 +228,7 @@ class Response:
         checks = [
             (C.S_N_NONPOSITIVE, f"the floor normal force reached zero (the {body} would jump)"),
             (C.S_PY_NONPOSITIVE, "the statue's base force reached zero (the statue would lift off)"),
-            (C.S_TOP_SLIP, "the statue would slip on the pedestal (top-face friction exceeded, "
-                           "during rocking or at an impact)"),
+            (C.S_TOP_SLIP, "the statue would slip on the pedestal (top-face friction exceeded)"),
             (C.S_UPLIFT, "the pedestal would uplift (normal force outside its base)"),
         ]
         for index, text in checks:

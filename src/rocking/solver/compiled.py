@@ -22,7 +22,17 @@ import math
 import numpy as np
 from numba import njit, types
 
-from ..excitation.signal import LOCAL_COSINE, LOCAL_LINEAR, LOCAL_SIZE, LOCAL_ZERO, cosine_band_exit, local_value, localise
+from ..excitation.signal import (
+    LOCAL_COSINE,
+    LOCAL_LINEAR,
+    LOCAL_SIZE,
+    LOCAL_ZERO,
+    cosine_band_exit,
+    crest_inside,
+    local_value,
+    localise,
+    monotone_spacing,
+)
 from ..integrators import dop853, dopri5
 from ..models.dynamics import (
     evaluate_all,
@@ -378,14 +388,60 @@ def _rest_top_ratio(p, y, loc, t_a, t_b):
     stretch the rest crossing passes without a step (so without the loop's checks). At rest the
     statue moves with the floor: P_x = m₂·a_g, P_y = m₂·(g + a_v) (derivation §3.5). On a
     piecewise-linear piece that ratio of two linear functions is largest at an end; on a
-    harmonic one (no vertical part) at an end or where |A·cos(ωτ + φ)| = A."""
+    harmonic or a pulse (no vertical part) at an end or at a crest of |a_g| (crest_inside)."""
     best = max(_rest_base_ratio(p, y, loc, t_a), _rest_base_ratio(p, y, loc, t_b))
-    if loc[0] == LOCAL_COSINE and loc[LOCAL_SIZE] == LOCAL_ZERO and loc[2] > 0.0:
-        omega, phase = loc[2], loc[3]
-        tau = (math.ceil((omega * t_a + phase) / math.pi) * math.pi - phase) / omega
-        if t_a < tau < t_b:
-            best = max(best, _rest_base_ratio(p, y, loc, tau))
+    tau = crest_inside(loc, t_a, t_b)
+    if tau == tau:
+        best = max(best, _rest_base_ratio(p, y, loc, tau))
     return best
+
+
+@njit(cache=True, _nrt=False)
+def _rest_top_check(p, y, loc, t_a, t_b, summ):
+    """_rest_top_ratio over a stretch at rest, crossed without a step or stepped (a step reads
+    the forces at its stages only, which straddle a crest of |a_g|: a Ricker pulse's peak fell
+    0.4 % short of |a_p|/g before 2026-12-02); where it passes the top face's μs, the time of
+    the top-slip warning too, if none was set (at rest the statue slips as readily as rocking)."""
+    ratio = _rest_top_ratio(p, y, loc, t_a, t_b)
+    if p[MU_TOP] >= 0.0 and ratio > p[MU_TOP] and math.isnan(summ[S_TOP_SLIP]):
+        summ[S_TOP_SLIP] = _first_top_slip(p, y, loc, t_a, t_b)
+    return ratio
+
+
+@njit(cache=True, _nrt=False)
+def _first_top_slip(p, y, loc, t_a, t_b):
+    """The first time in [t_a, t_b] (s) at which the statue's base at rest needs more than the
+    top face's μs, |P_x| > μs·P_y, or NaN if it never does there. For the warning's time: the
+    ratio is sampled at the floor motion's monotone spacing (so the first sample above μs
+    follows the first crossing with no other crossing in between; a crest between two samples
+    counts as a sample) and the crossing is then bisected to the last bit."""
+    mu = p[MU_TOP]
+    if _rest_base_ratio(p, y, loc, t_a) > mu:
+        return t_a
+    tau = crest_inside(loc, t_a, t_b)
+    n = int(min(1e6, max(1.0, math.ceil((t_b - t_a) / monotone_spacing(loc)))))
+    lo = t_a
+    hi = math.nan
+    for i in range(1, n + 1):
+        ti = t_b if i == n else t_a + (t_b - t_a) * i / n
+        if lo < tau < ti and _rest_base_ratio(p, y, loc, tau) > mu:
+            hi = tau
+            break
+        if _rest_base_ratio(p, y, loc, ti) > mu:
+            hi = ti
+            break
+        lo = ti
+    if hi != hi:
+        return math.nan
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if not lo < mid < hi:
+            break
+        if _rest_base_ratio(p, y, loc, mid) > mu:
+            hi = mid
+        else:
+            lo = mid
+    return hi
 
 
 @njit(cache=True, _nrt=False)
@@ -556,7 +612,7 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                     a1, av1 = _ground(loc, t_stop)
                     evaluate_guards(p, 0, 0, y, a1, av1, exceeded, g1)
             if t_quiet > t:
-                top_ratio = max(top_ratio, _rest_top_ratio(p, y, loc, t, t_quiet))
+                top_ratio = max(top_ratio, _rest_top_check(p, y, loc, t, t_quiet, summ))
                 if save:
                     n_out, next_grid = _hold(t_out, y_out, r_out, n_out, cap, next_grid, n_grid, t0, save_dt,
                                              t_quiet + 1e-12, y, 0, math.nan)
@@ -719,6 +775,8 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
 
         if first < 0:
             top_ratio = max(top_ratio, gmin[N_GUARDS])
+            if sig == 0 and s == 0:
+                top_ratio = max(top_ratio, _rest_top_check(p, y, loc, t, t1, summ))
             for j in range(N_STATE):
                 y[j] = y_new[j]
             t = t1
@@ -758,6 +816,8 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                     Ke[0, j] = K[0, j]
                 _step(t, y, te - t, Ke, work, ye, p, sig, s, loc, gmin, False)
                 top_ratio = max(top_ratio, gmin[N_GUARDS])  # stages up to the event only
+            if sig == 0 and s == 0:
+                top_ratio = max(top_ratio, _rest_top_check(p, y, loc, t, te, summ))
             for j in range(N_STATE):
                 y[j] = ye[j]
             t = te
@@ -835,6 +895,10 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
         if py > 0.0:
             if abs(y[2]) <= p[ALPHA]:
                 top_ratio = max(top_ratio, abs(px) / py)
+        if p[MU_TOP] >= 0.0 and abs(px) > p[MU_TOP] * py and math.isnan(summ[S_TOP_SLIP]):
+            # in every regime: at rest (where the stretch checks above also find the first
+            # instant) and while the pedestal slides under a resting statue as while it rocks
+            summ[S_TOP_SLIP] = t
         if s != 0:
             if n_full <= 0.0:
                 if math.isnan(summ[S_N_NONPOSITIVE]):
@@ -842,9 +906,6 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
             if py <= 0.0:
                 if math.isnan(summ[S_PY_NONPOSITIVE]):
                     summ[S_PY_NONPOSITIVE] = t
-            if p[MU_TOP] >= 0.0 and abs(px) > p[MU_TOP] * py:
-                if math.isnan(summ[S_TOP_SLIP]):
-                    summ[S_TOP_SLIP] = t
             b1 = pedestal_half_width(p)
             if b1 > 0.0:
                 xn = pressure_centre(p, s, a, udd, px, py, n_full)
