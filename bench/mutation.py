@@ -580,7 +580,37 @@ def baseline(work: Work, module: str) -> dict:
     return meta
 
 
-def init_session(work: Work, module: str, timeout: float) -> None:
+def changed_lines(work: Work, module: str, since: str) -> set[int]:
+    """Line numbers (1-based) of the copy's ``module`` that are new or changed since the commit
+    ``since`` (difflib against ``git show since:path``): where a fix's own mutants live."""
+    import difflib
+
+    rel = f"src/rocking/{module}"
+    old = subprocess.run(["git", "-C", str(REPO), "show", f"{since}:{rel}"], capture_output=True, text=True)
+    if old.returncode:
+        raise SystemExit(f"--since {since}: {old.stderr.strip()}")
+    new = (work.tree / rel).read_text(encoding="utf-8").splitlines()
+    out: set[int] = set()
+    for tag, _, _, j1, j2 in difflib.SequenceMatcher(None, old.stdout.splitlines(), new, autojunk=False).get_opcodes():
+        if tag in ("replace", "insert"):
+            out.update(range(j1 + 1, j2 + 1))
+    return out
+
+
+def parse_lines(spec: str) -> set[int]:
+    """'12-40,57' → {12, …, 40, 57}."""
+    out: set[int] = set()
+    for part in filter(None, (p.strip() for p in spec.split(","))):
+        lo, _, hi = part.partition("-")
+        try:
+            a, b = int(lo), int(hi or lo)
+        except ValueError:
+            raise SystemExit(f"--lines: {part!r} is not a line or a range like 12-40") from None
+        out.update(range(a, b + 1))
+    return out
+
+
+def init_session(work: Work, module: str, timeout: float, only: set[int] | None = None) -> None:
     from cosmic_ray.plugins import operator_names
 
     exclude = sorted(f"{re.escape(n)}$" for n in operator_names() if n not in KEEP_OPERATORS)
@@ -614,6 +644,9 @@ def init_session(work: Work, module: str, timeout: float) -> None:
             m = item.mutations[0]
             if not _kept(m, lines[m.start_pos[0] - 1]):
                 db.set_result(item.job_id, WorkResult(output="not in the policy", worker_outcome=WorkerOutcome.SKIPPED))
+            elif only is not None and m.start_pos[0] not in only:
+                db.set_result(item.job_id, WorkResult(output="outside --lines/--since",
+                                                      worker_outcome=WorkerOutcome.SKIPPED))
 
 
 def execute(work: Work, module: str, deadline: float | None) -> bool:
@@ -861,6 +894,9 @@ def main(argv=None) -> int:
     p.add_argument("--share", type=Path, action="append", default=[], metavar="FOLDER",
                    help="another work folder on the same source: a mutant it has run is not run "
                         "again here, its outcome is copied (give it to both workers, each naming the other)")
+    p.add_argument("--since", metavar="COMMIT",
+                   help="when a session begins: only the mutants on lines new or changed since COMMIT (a fix's own lines)")
+    p.add_argument("--lines", metavar="SPEC", help="when a session begins: only the mutants on these lines, e.g. 12-40,57")
     sub.add_parser("report", help="counts per module")
     sub.add_parser("union", help="counts of distinct mutants over this folder and those it shares with (`run --share`)")
     p = sub.add_parser("plan", help="mutants per module under the policy, and a time estimate (runs nothing)")
@@ -910,7 +946,14 @@ def main(argv=None) -> int:
             if not work.db(module).exists():
                 meta = baseline(work, module)
                 print(f"{module}: baseline {meta}", flush=True)
-                init_session(work, module, args.timeout or meta["timeout_s"])
+                only = None
+                if args.since:
+                    only = changed_lines(work, module, args.since)
+                if args.lines:
+                    only = parse_lines(args.lines) if only is None else only & parse_lines(args.lines)
+                if only is not None:
+                    print(f"{module}: only the mutants on {len(only)} lines", flush=True)
+                init_session(work, module, args.timeout or meta["timeout_s"], only)
             else:  # re-warm the shared cache (and check the unmutated tests still pass)
                 if run_tests(work, module, work.base_cache, quiet=True)[0]:
                     raise SystemExit(f"{module}: the tests fail on the unmutated copy")
