@@ -22,7 +22,7 @@ from helpers import G, alone, block
 
 import rocking as rk
 from rocking.excitation.record import GroundMotion
-from rocking.excitation.signal import LOCAL_SIZE, crest_inside, evaluate, local_value
+from rocking.excitation.signal import LOCAL_SIZE, crest_inside, evaluate, local_value, next_crest
 from rocking.io.records import read_record
 from rocking.simulation import prepare
 from rocking.solver.compiled import _piece_table
@@ -136,6 +136,41 @@ def test_crest_inside_gives_the_largest_acceleration_between_any_two_times(name)
         assert found == 0  # linear pieces: largest at an end
     else:
         assert found >= 10  # (a test of something: crests inside many stretches)
+
+
+@pytest.mark.parametrize("name", list(ANALYTIC))
+def test_next_crest_is_the_first_local_maximum_of_the_acceleration_after_any_time(name):
+    """next_crest orders the search for the first instant a check at rest fails, so it must not
+    skip a crest: from 60 random times in each piece, the returned time must be a local maximum
+    of |a| (the motion's own ``acceleration``, 1e-5 of the gap either side), and |a| sampled at
+    20 001 points from the start to it must have no interior local maximum higher than the
+    sampling's own rounding (a skipped crest shows as one). inf for the linear pieces of the
+    rectangle and the ramp, and past a pulse's last crest."""
+    motion = ANALYTIC[name]
+    rng = _rng(name + " next crest")
+    table, edges = _pieces(motion, motion.duration)
+    found = 0
+    for i in range(table.shape[0]):
+        loc = tuple(float(v) for v in table[i])
+        for t in rng.uniform(edges[i], edges[i + 1], 60):
+            c = next_crest(loc, t)
+            if math.isinf(c):
+                continue
+            found += 1
+            assert c > t
+            end = min(c, edges[i + 1])  # (a crest past the piece's end is the formula's, clamped by its callers)
+            if c < edges[i + 1]:
+                step = 1e-5 * (c - t)
+                here = abs(float(motion.acceleration(c)))
+                assert here >= abs(float(motion.acceleration(c - step))) and here >= abs(float(motion.acceleration(c + step)))
+            a = np.abs(motion.acceleration(np.linspace(t, end, 20_001)))
+            inner = a[1:-1]
+            peaks = (inner > a[:-2]) & (inner > a[2:]) & (inner > 1e-9 * motion.pga)
+            assert not peaks[:-1].any()  # (the last sample's neighbour is the crest itself)
+    if name in ("rectangle pulse", "ramp"):
+        assert found == 0
+    else:
+        assert found >= 20
 
 
 def test_ricker_pulse_values_at_known_points():

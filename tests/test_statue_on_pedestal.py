@@ -11,7 +11,7 @@ from oracles import energy, lagrange
 import rocking as rk
 from rocking.excitation.record import GroundMotion
 from rocking.models import dynamics
-from rocking.models.parameters import pack
+from rocking.models.parameters import MU_TOP, pack
 from rocking.models.regimes import Regime
 
 FLOOR = rk.Friction(static=0.4, kinetic=0.3)
@@ -321,9 +321,9 @@ def test_required_top_friction_of_a_pedestal_that_never_slides(kind):
     assert np.nanmax(r.contact_forces()["top_friction_ratio"]) <= need * (1 + 1e-12)
 
 
-def _first_rest_slip(motion, mu):
-    """The first time a statue moving with the floor needs more than μ from its base,
-    |a_h(t)| > μ·(g + a_v(t)), from the motion's own formulas: bracketed on a grid of 1e-4 s
+def _first_rest_excess(motion, mu):
+    """The first time |a_h(t)| > μ·(g + a_v(t)), from the motion's own formulas (at rest: when a
+    statue moving with the floor needs more than μ from its base): bracketed on a grid of 1e-4 s
     (shorter than a quarter of any swing here) and solved by brentq to 1e-15 s."""
     from scipy.optimize import brentq
 
@@ -376,12 +376,136 @@ def test_the_top_slip_warning_of_a_statue_at_rest_comes_when_its_base_first_need
 
     r = run(0.2)
     assert r.events == [] and r.summary()["first_rocking_time"] is None
-    want = _first_rest_slip(motion, 0.2)
+    want = _first_rest_excess(motion, 0.2)
     assert want > 0.01
     assert _slip_warning_time(r) == pytest.approx(want, abs=1e-12)
     need = r.summary()["required_top_friction"]
     assert np.isnan(_slip_warning_time(run(1.001 * need)))
     assert _slip_warning_time(run(0.999 * need)) > want
+
+
+def _rest_motion(kind):
+    if kind == "sin":
+        return rk.Harmonic(amplitude=3.0, frequency=2.0, cycles=2, form="sin")
+    if kind == "ricker":
+        return rk.RickerPulse(amplitude=3.0, frequency=2.0)
+    t = np.round(np.arange(0.0, 4.0, 0.01), 10)
+    rng = np.random.default_rng(3)
+    a = 2.0 * np.convolve(rng.normal(size=t.size), np.ones(5) / 5, mode="same")
+    av = np.convolve(rng.normal(size=t.size), np.ones(5) / 5, mode="same")
+    return GroundMotion(time=t, values=a, vertical=av)
+
+
+@pytest.mark.parametrize("kind", ["sin", "ricker", "record-with-vertical"])
+def test_the_uplift_warning_of_a_tall_narrow_pedestal_under_a_resting_statue(kind):
+    """A squat statue (50 kg) on a pedestal 0.3 m wide and 1 m tall (50 kg) that μs = 0.8 holds:
+    nothing slides or rocks, but the floor's normal force moves off the pedestal's base. At rest,
+    moments about the base centre give |x_N| = |a_h|·H₁·(m₂ + m₁/2) / ((m₁ + m₂)(g + a_v)), so
+    it leaves the half-width b₁ = 0.15 m when |a_h|/(g + a_v) > b₁(m₁ + m₂)/(H₁(m₂ + m₁/2)) =
+    0.2. The run must warn that the pedestal would uplift, from that first instant (brentq on
+    the motion's formulas; 1e-12 s as for the top slip above), and not at all on a pedestal 0.6 m
+    wide (0.4 > every |a_h|/(g + a_v) here). Until 2026-12-02 the check was made only while the
+    statue rocked: the verdict "did not overturn; at rest" came with no warning, for a pedestal
+    that tips."""
+    motion = _rest_motion(kind)
+
+    def run(width):
+        statue = rk.Statue(width=1.0, height=1.2, mass=50.0)
+        pedestal = rk.Pedestal(mass=50.0, friction=rk.Friction(static=0.8, kinetic=0.7), width=width, height=1.0)
+        return rk.simulate(rk.System(statue=statue, pedestal=pedestal), motion, options=OPTS)
+
+    from rocking.solver import compiled as C
+    r = run(0.3)
+    assert r.events == [] and r.summary()["first_rocking_time"] is None
+    want = _first_rest_excess(motion, 0.15 * 100.0 / (1.0 * 75.0))
+    assert want > 0.01
+    (up,) = [w for w in r.warnings if "uplift" in w]
+    assert up.startswith(f"from t = {want:.4f} s")
+    assert r.raw_summary[C.S_UPLIFT] == pytest.approx(want, abs=1e-12)
+    wide = run(0.6)
+    assert wide.summary()["required_top_friction"] < 0.4
+    assert np.isnan(wide.raw_summary[C.S_UPLIFT]) and not any("uplift" in w for w in wide.warnings)
+
+
+@pytest.mark.parametrize("kind", ["cosine", "ricker", "ricker-fast", "linear-with-vertical"])
+def test_the_first_failure_at_rest_is_the_first_crossing_on_any_stretch(kind):
+    """The search behind both warnings at rest (compiled._first_failure), on 400 random stretches
+    of one floor-motion piece each and random top-face μs: the statue's base fails the check
+    where |a_h| > μs·(g + a_v). Against the motion's formulas written here, sampled at 20 001
+    points of the stretch: the returned instant must hold the check until it (no sample before it
+    fails, to 1e-12 of the level), fail just after it (within 1e-12 s: the bisection ends at the
+    last bit), and lie no later than the first failing sample (a later crossing of a wavelet's
+    three crests is not the first). NaN only where no sample fails. "ricker-fast" is a 6 Hz
+    wavelet, whose crests and zeros crowd into a few tens of milliseconds."""
+    from rocking.solver.compiled import _first_failure
+
+    rng = np.random.default_rng(sum(map(ord, kind)))
+    statue = rk.Statue(width=1.0, height=1.2, mass=50.0, friction=rk.Friction(static=0.2, kinetic=0.2))
+    base = pack(on_pedestal(statue, m1=100.0, friction=rk.Friction(static=0.8, kinetic=0.7)), gravity=G,
+                normal_force="full", impact="coulomb", rest_velocity=1e-6)
+    y = np.zeros(6)
+    found = 0
+    for _ in range(400):
+        if kind == "cosine":
+            amp, omega, phase = rng.uniform(-6, 6), rng.uniform(2, 30), rng.uniform(-7, 7)
+            loc = (2.0, amp, omega, phase, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+            t_a, t_b = np.sort(rng.uniform(0.0, 3.0, 2))
+
+            def a_h(t, amp=amp, omega=omega, phase=phase):
+                return amp * np.cos(omega * t + phase)
+
+            def a_v(t):
+                return 0.0 * t
+        elif kind.startswith("ricker"):
+            amp = rng.uniform(-6, 6)
+            f = 6.0 if kind == "ricker-fast" else rng.uniform(0.5, 3.0)
+            t0 = 1.5 / f
+            loc = (3.0, amp, f, t0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+            t_a = rng.uniform(0.0, t0)
+            t_b = rng.uniform(t_a, 2.0 * t0)
+
+            def a_h(t, amp=amp, f=f, t0=t0):
+                x = (np.pi * f * (t - t0)) ** 2
+                return amp * (1.0 - 2.0 * x) * np.exp(-x)
+
+            def a_v(t):
+                return 0.0 * t
+        else:
+            a0, slope, v0, vslope, tl = rng.uniform(-4, 4), rng.uniform(-80, 80), rng.uniform(-3, 3), rng.uniform(-60, 60), rng.uniform(0, 2)
+            t_a = tl + rng.uniform(0.0, 0.01)
+            t_b = t_a + rng.uniform(0.0, 0.02)
+            loc = (1.0, a0, slope, tl, 0.0, 1.0, v0, vslope, tl, 0.0)
+
+            def a_h(t, a0=a0, slope=slope, tl=tl):
+                return a0 + slope * (t - tl)
+
+            def a_v(t, v0=v0, vslope=vslope, tl=tl):
+                return v0 + vslope * (t - tl)
+        mu = rng.uniform(0.02, 0.6)
+        p = list(base)
+        p[MU_TOP] = mu
+        p = tuple(p)
+
+        def excess(t):
+            return np.abs(a_h(t)) - mu * (G + a_v(t))
+
+        grid = np.linspace(t_a, t_b, 20_001)
+        ex = excess(grid)
+        if np.any(G + a_v(grid) <= 0.0):
+            continue  # (a floor falling faster than g: the statue flies, another check)
+        got = _first_failure(p, y, loc, t_a, t_b, 1)
+        level = 1e-12 * (abs(a_h(t_a)) + mu * G + 1.0)
+        bad = np.nonzero(ex > 0.0)[0]
+        if np.isnan(got):
+            assert bad.size == 0
+            continue
+        found += 1
+        assert t_a <= got <= t_b
+        assert np.all(ex[grid < got] <= level)
+        assert got == t_a or excess(min(got + 1e-12, t_b)) > -level
+        if bad.size:
+            assert got <= grid[bad[0]]
+    assert found >= 40
 
 
 def test_violation_intervals_agree_with_the_first_times_in_the_summary():

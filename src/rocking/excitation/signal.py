@@ -179,16 +179,23 @@ def crest_inside(loc, t_a, t_b):
 
 
 @njit(cache=True, inline="always")
-def monotone_spacing(loc):
-    """A time step (s) short enough that no stretch of the horizontal floor acceleration of
-    ``loc`` that long holds more than one of its crests and zeros, so |a_h| there rises, falls,
-    or does one then the other: sampled at this spacing, a first crossing of a level lies
-    between the first sample above it and the one before, and nowhere earlier. A cosine's
-    crests and zeros lie π/(2ω) apart; a Ricker wavelet's at τ = 0, ±1/(√2 π f), ±√(3/2)/(π f),
-    at least 0.165/f apart. Infinite for a linear piece (|a_h| has one kink, at its zero)."""
+def next_crest(loc, t):
+    """The first local maximum of |a_h| of ``loc`` strictly after time t (s), or inf if it has no
+    more: a cosine's where ω t + φ is a multiple of π, a Ricker wavelet's at τ = −√(3/2)/(π f),
+    0 and +√(3/2)/(π f). Between two crests |a_h| only falls, rises, or falls to zero and rises,
+    so a level it passes there is passed at an end: what a search for a first crossing needs."""
     mode = loc[0]
     if mode == LOCAL_COSINE and loc[2] > 0.0:
-        return 0.25 * math.pi / loc[2]
+        omega, phase = loc[2], loc[3]
+        tau = ((math.floor((omega * t + phase) / math.pi) + 1.0) * math.pi - phase) / omega
+        return tau if tau > t else tau + math.pi / omega
     if mode == LOCAL_RICKER and loc[2] > 0.0:
-        return 0.08 / loc[2]
+        t0 = loc[3]
+        side = math.sqrt(1.5) / (math.pi * loc[2])
+        if t < t0 - side:
+            return t0 - side
+        if t < t0:
+            return t0
+        if t < t0 + side:
+            return t0 + side
     return math.inf

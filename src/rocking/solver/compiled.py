@@ -31,7 +31,7 @@ from ..excitation.signal import (
     crest_inside,
     local_value,
     localise,
-    monotone_spacing,
+    next_crest,
 )
 from ..integrators import dop853, dopri5
 from ..models.dynamics import (
@@ -372,72 +372,79 @@ def _save_row(y_out, n, y):
 
 
 @njit(cache=True, _nrt=False)
-def _rest_base_ratio(p, y, loc, t):
-    """|P_x|/P_y under the statue's base at rest at time t (0 where P_y ≤ 0 or |θ| > α, as in
-    the checks of the event loop)."""
+def _rest_point(p, y, loc, t):
+    """At rest at time t, the three things the loop checks that depend on the floor motion alone
+    (derivation §3.5): the ratio |P_x|/P_y the statue's base needs (0 where P_y ≤ 0 or |θ| > α,
+    as in the loop), and by how much the model's assumptions fail there: |P_x| − μs,top·P_y (the
+    statue slips on the pedestal if > 0) and |x_N| − b₁ (the pedestal uplifts if > 0), each −inf
+    when its check is off (no top friction given; no pedestal width or height)."""
     a, av = _ground(loc, t)
-    _, _, _, _, _, px, py, _, _ = evaluate_all(p, 0, 0, y[1], y[2], y[3], a, av)
-    if py > 0.0 and abs(y[2]) <= p[ALPHA]:
-        return abs(px) / py
-    return 0.0
+    _, _, _, _, n_full, px, py, _, _ = evaluate_all(p, 0, 0, y[1], y[2], y[3], a, av)
+    ratio = abs(px) / py if py > 0.0 and abs(y[2]) <= p[ALPHA] else 0.0
+    slip = abs(px) - p[MU_TOP] * py if p[MU_TOP] >= 0.0 else -math.inf
+    uplift = -math.inf
+    b1 = pedestal_half_width(p)
+    if b1 > 0.0:
+        xn = pressure_centre(p, 0, a, 0.0, px, py, n_full)
+        if math.isfinite(xn):
+            uplift = abs(xn) - b1
+    return ratio, slip, uplift
 
 
 @njit(cache=True, _nrt=False)
-def _rest_top_ratio(p, y, loc, t_a, t_b):
-    """The largest |P_x|/P_y the statue's base needs while everything rests from t_a to t_b, a
-    stretch the rest crossing passes without a step (so without the loop's checks). At rest the
-    statue moves with the floor: P_x = m₂·a_g, P_y = m₂·(g + a_v) (derivation §3.5). On a
+def _rest_checks(p, y, loc, t_a, t_b, summ):
+    """The largest |P_x|/P_y the statue's base needs while everything rests from t_a to t_b, and
+    the first instants there of the top-slip and uplift warnings, if not set yet. For a stretch
+    the rest crossing passes without a step (so without the loop's checks), and for a step at
+    rest (whose stages straddle a crest of |a_g|: a Ricker pulse's peak fell 0.4 % short of
+    |a_p|/g before 2026-12-02). At rest the bodies move with the floor: P_x = m₂·a_g,
+    P_y = m₂·(g + a_v), x_N ∝ a_g/(g + a_v), all functions of |a_g|/(g + a_v). On a
     piecewise-linear piece that ratio of two linear functions is largest at an end; on a
-    harmonic or a pulse (no vertical part) at an end or at a crest of |a_g| (crest_inside)."""
-    best = max(_rest_base_ratio(p, y, loc, t_a), _rest_base_ratio(p, y, loc, t_b))
+    harmonic or a pulse (no vertical part) at an end or at a crest of |a_g| (crest_inside).
+    Until 2026-12-02 neither warning was checked at rest (a tall, narrow pedestal tipping under
+    a resting statue went unflagged)."""
+    ratio, slip, uplift = _rest_point(p, y, loc, t_a)
+    r_b, slip_b, uplift_b = _rest_point(p, y, loc, t_b)
+    ratio, slip, uplift = max(ratio, r_b), max(slip, slip_b), max(uplift, uplift_b)
     tau = crest_inside(loc, t_a, t_b)
     if tau == tau:
-        best = max(best, _rest_base_ratio(p, y, loc, tau))
-    return best
-
-
-@njit(cache=True, _nrt=False)
-def _rest_top_check(p, y, loc, t_a, t_b, summ):
-    """_rest_top_ratio over a stretch at rest, crossed without a step or stepped (a step reads
-    the forces at its stages only, which straddle a crest of |a_g|: a Ricker pulse's peak fell
-    0.4 % short of |a_p|/g before 2026-12-02); where it passes the top face's μs, the time of
-    the top-slip warning too, if none was set (at rest the statue slips as readily as rocking)."""
-    ratio = _rest_top_ratio(p, y, loc, t_a, t_b)
-    if p[MU_TOP] >= 0.0 and ratio > p[MU_TOP] and math.isnan(summ[S_TOP_SLIP]):
-        summ[S_TOP_SLIP] = _first_top_slip(p, y, loc, t_a, t_b)
+        r_c, slip_c, uplift_c = _rest_point(p, y, loc, tau)
+        ratio, slip, uplift = max(ratio, r_c), max(slip, slip_c), max(uplift, uplift_c)
+    if slip > 0.0 and math.isnan(summ[S_TOP_SLIP]):
+        summ[S_TOP_SLIP] = _first_failure(p, y, loc, t_a, t_b, 1)
+    if uplift > 0.0 and math.isnan(summ[S_UPLIFT]):
+        summ[S_UPLIFT] = _first_failure(p, y, loc, t_a, t_b, 2)
     return ratio
 
 
 @njit(cache=True, _nrt=False)
-def _first_top_slip(p, y, loc, t_a, t_b):
-    """The first time in [t_a, t_b] (s) at which the statue's base at rest needs more than the
-    top face's μs, |P_x| > μs·P_y, or NaN if it never does there. For the warning's time: the
-    ratio is sampled at the floor motion's monotone spacing (so the first sample above μs
-    follows the first crossing with no other crossing in between; a crest between two samples
-    counts as a sample) and the crossing is then bisected to the last bit."""
-    mu = p[MU_TOP]
-    if _rest_base_ratio(p, y, loc, t_a) > mu:
+def _fails(p, y, loc, t, which):
+    """Whether check ``which`` of _rest_point (1: top slip, 2: uplift) fails at rest at t."""
+    return _rest_point(p, y, loc, t)[which] > 0.0
+
+
+@njit(cache=True, _nrt=False)
+def _first_failure(p, y, loc, t_a, t_b, which):
+    """The first time in [t_a, t_b] (s) at which check ``which`` of _rest_point fails at rest, or
+    NaN if it never does there. For the warning's time. Both checks grow with |a_g|/(g + a_v),
+    so between two crests of |a_g| (next_crest) a failure shows at an end: the crests are
+    visited in order from t_a, and the crossing before the first failing one (or t_b) is then
+    bisected to the last bit, the only one between it and the crest before."""
+    if _fails(p, y, loc, t_a, which):
         return t_a
-    tau = crest_inside(loc, t_a, t_b)
-    n = int(min(1e6, max(1.0, math.ceil((t_b - t_a) / monotone_spacing(loc)))))
     lo = t_a
-    hi = math.nan
-    for i in range(1, n + 1):
-        ti = t_b if i == n else t_a + (t_b - t_a) * i / n
-        if lo < tau < ti and _rest_base_ratio(p, y, loc, tau) > mu:
-            hi = tau
+    while True:
+        hi = min(next_crest(loc, lo), t_b)
+        if _fails(p, y, loc, hi, which):
             break
-        if _rest_base_ratio(p, y, loc, ti) > mu:
-            hi = ti
-            break
-        lo = ti
-    if hi != hi:
-        return math.nan
+        if hi >= t_b:
+            return math.nan
+        lo = hi
     for _ in range(200):
         mid = 0.5 * (lo + hi)
         if not lo < mid < hi:
             break
-        if _rest_base_ratio(p, y, loc, mid) > mu:
+        if _fails(p, y, loc, mid, which):
             hi = mid
         else:
             lo = mid
@@ -612,7 +619,7 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                     a1, av1 = _ground(loc, t_stop)
                     evaluate_guards(p, 0, 0, y, a1, av1, exceeded, g1)
             if t_quiet > t:
-                top_ratio = max(top_ratio, _rest_top_check(p, y, loc, t, t_quiet, summ))
+                top_ratio = max(top_ratio, _rest_checks(p, y, loc, t, t_quiet, summ))
                 if save:
                     n_out, next_grid = _hold(t_out, y_out, r_out, n_out, cap, next_grid, n_grid, t0, save_dt,
                                              t_quiet + 1e-12, y, 0, math.nan)
@@ -776,7 +783,7 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
         if first < 0:
             top_ratio = max(top_ratio, gmin[N_GUARDS])
             if sig == 0 and s == 0:
-                top_ratio = max(top_ratio, _rest_top_check(p, y, loc, t, t1, summ))
+                top_ratio = max(top_ratio, _rest_checks(p, y, loc, t, t1, summ))
             for j in range(N_STATE):
                 y[j] = y_new[j]
             t = t1
@@ -817,7 +824,7 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                 _step(t, y, te - t, Ke, work, ye, p, sig, s, loc, gmin, False)
                 top_ratio = max(top_ratio, gmin[N_GUARDS])  # stages up to the event only
             if sig == 0 and s == 0:
-                top_ratio = max(top_ratio, _rest_top_check(p, y, loc, t, te, summ))
+                top_ratio = max(top_ratio, _rest_checks(p, y, loc, t, te, summ))
             for j in range(N_STATE):
                 y[j] = ye[j]
             t = te
@@ -899,6 +906,12 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
             # in every regime: at rest (where the stretch checks above also find the first
             # instant) and while the pedestal slides under a resting statue as while it rocks
             summ[S_TOP_SLIP] = t
+        b1 = pedestal_half_width(p)
+        if b1 > 0.0 and math.isnan(summ[S_UPLIFT]):
+            # in every regime too: a tall, narrow pedestal tips under a resting statue as well
+            xn = pressure_centre(p, s, a, udd, px, py, n_full)
+            if math.isfinite(xn) and abs(xn) > b1:
+                summ[S_UPLIFT] = t
         if s != 0:
             if n_full <= 0.0:
                 if math.isnan(summ[S_N_NONPOSITIVE]):
@@ -906,11 +919,6 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
             if py <= 0.0:
                 if math.isnan(summ[S_PY_NONPOSITIVE]):
                     summ[S_PY_NONPOSITIVE] = t
-            b1 = pedestal_half_width(p)
-            if b1 > 0.0:
-                xn = pressure_centre(p, s, a, udd, px, py, n_full)
-                if math.isfinite(xn) and abs(xn) > b1 and math.isnan(summ[S_UPLIFT]):
-                    summ[S_UPLIFT] = t
 
     if status == STATUS_COMPLETED and (sig != 0 or s != 0):
         status = STATUS_STILL_MOVING  # the time ran out, not the motion
