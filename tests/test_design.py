@@ -395,3 +395,43 @@ def test_the_example_is_infeasible_and_says_so_first(cli, tmp_path, capsys):
     report = (out / "design_report.md").read_text()
     for name, clearance in zip(per_motion.motion.values, per_motion.values):
         assert f"| {name} | {_mm_text(1e3 * clearance).removesuffix(' mm')} | stands |" in report
+
+
+def test_a_friction_at_which_the_pedestal_would_tip_is_not_recommended():
+    """A squat statue (tan α = 0.83: it never rocks here) on a pedestal 0.3 m wide and 1 m tall
+    (50 kg each), under a 3 m/s² (0.31 g) harmonic. While the pedestal rests it passes on the
+    floor's acceleration, and the floor's reaction leaves its base once |a_g|/g > b₁(m₁ + m₂) /
+    (H₁(m₂ + m₁/2)) = 0.2 (derivation §3.5): the pedestal would tip, which this model does not
+    follow. A pedestal that slides passes on at most μs·g, so μs = 0.1 and 0.15 (0.18 at the top
+    of the ±20 % scatter) never tip, and μs = 0.3 and 0.5 (which hold it: 0.36 > 0.31) do. Every
+    candidate keeps the statue still (θ/α = 0), so the free space decided: until 2026-12-02 the
+    design recommended μs = 0.5, which needs none, and at which the pedestal tips. Now the
+    candidates that tip are not safe and are named, and 0.15 is recommended (the safe one that
+    slides least)."""
+    statue = rk.Statue(width=1.0, height=1.2, mass=50.0)
+    pedestal = rk.Pedestal(mass=50.0, friction=rk.Friction(static=0.3, kinetic=0.24), width=0.3, height=1.0)
+    motions = {"sine 3 m/s² 2 Hz": rk.Harmonic(amplitude=3.0, frequency=2.0, cycles=3, form="sin")}
+    ds = friction_design(rk.System(statue=statue, pedestal=pedestal), motions, mu_s=[0.1, 0.15, 0.3, 0.5],
+                         free_time=3.0, options=OPTS, workers=1)
+    assert ds.attrs["recommended_mu_s"] == 0.15
+    assert not ds.falls.values.any()
+    assert ds.pedestal_tips.values[:, 0, 0].tolist() == [False, False, True, True]
+    assert ds.safe.values[:, 0].tolist() == [True, True, False, False]
+    uplift = ds.scatter_pedestal_uplift_time.sel(mu_s=0.5, pedestal_mass=50.0).values.ravel()
+    # held at every level: the first instant |a_g| = 0.2 g, asin(0.2 g / A)/ω
+    np.testing.assert_allclose(uplift, np.arcsin(0.2 * G / 3.0) / (4 * np.pi), rtol=1e-12)
+    assert np.isnan(ds.scatter_pedestal_uplift_time.sel(mu_s=0.15).values).all()
+    report = design_report(ds)
+    assert "the pedestal would tip" not in ds.attrs["verdict"]  # (a safe one is recommended)
+    assert report.count("| no (the pedestal tips under 1/1) |") == 2
+    # with only the candidates that tip, nothing is recommended, and the report says why
+    tipping = friction_design(rk.System(statue=statue, pedestal=pedestal), motions, mu_s=[0.3, 0.5],
+                              free_time=3.0, options=OPTS, workers=1)
+    assert np.isnan(tipping.attrs["recommended_mu_s"]) and tipping.attrs["meets_every_requirement"] == 0
+    assert "tips its pedestal" in tipping.attrs["verdict"]
+    assert "stands, but the pedestal would tip at μs·0.8, μs, μs·1.2" in design_report(tipping)
+    # and a pedestal wide enough never tips: the design is the one it was
+    wide = rk.Pedestal(mass=50.0, friction=rk.Friction(static=0.3, kinetic=0.24), width=1.0, height=1.0)
+    ds_wide = friction_design(rk.System(statue=statue, pedestal=wide), motions, mu_s=[0.1, 0.15, 0.3, 0.5],
+                              free_time=3.0, options=OPTS, workers=1)
+    assert not ds_wide.pedestal_tips.values.any() and ds_wide.attrs["recommended_mu_s"] == 0.5

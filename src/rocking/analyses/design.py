@@ -218,7 +218,8 @@ def ranking_rule(friction_scatter: float, objective: str = "mean", *, two_face: 
                 f"floor μs, the lighter pedestal, the smaller top μs, the narrower pedestal; if no safe candidate "
                 f"meets the limits, the safe one needing the least free space (among those within the limit on the "
                 f"statue's slide on the top face, if any), and nothing if none is safe")
-    return (f"safety first: a value is safe if the statue neither falls nor is left moving under any motion {band}; "
+    return (f"safety first: a value is safe if the statue neither falls nor is left moving, and its pedestal (where "
+            f"its width and height are given) would not tip, under any motion {band}; "
             f"among the safe values that meet the limits, μs·(1 + s) below the statue–pedestal face's friction, "
             f"then the smallest {objective} peak θ/α, the least free space, the smaller μs, the lighter pedestal; if no safe "
             f"value meets the limits, the safe one needing the least free space, and nothing if no value is safe")
@@ -316,6 +317,7 @@ def choose_design(
     describe: Callable[[tuple[int, ...]], str] | None = None,
     slid_off: Any = None,
     slid_off_text: str = "a block slides to the edge of the one below",
+    slid_off_how: str = "slides to an edge",
     subject: str = "pedestal floor friction",
     top_sliding: Any = None,
     top_sliding_limit: Any = None,
@@ -357,7 +359,9 @@ def choose_design(
         ``describe(index)`` → the text naming a candidate (default: its μs, μk and mass).
     slid_off : bool array like ``falls``, optional
         Stack runs: a block slid to the edge of the one below at some friction level (the engine
-        stops there). Not safe, like a fall, and named as ``slid_off_text``.
+        stops there); or, in the two-body model, the pedestal would tip (its uplift check). Not
+        safe, like a fall, and named as ``slid_off_text`` (and ``slid_off_how`` where the verdict
+        lists how every candidate fails).
     subject : str
         What the first line recommends ("Recommended <subject>: …").
     top_sliding : array like ``score``, optional
@@ -532,7 +536,7 @@ def choose_design(
                          + "".join(f"; {m}" for m in other) + ".")
         else:
             how = "falls, or is left undetermined" if slid_off is None else \
-                "falls, slides to an edge, or is left undetermined"
+                f"falls, {slid_off_how}, or is left undetermined"
             lines.append(f"No candidate met every requirement: with every candidate the statue {how}, under some "
                          f"motion {band}. Nothing is recommended.")
         # "fewest falls" unless the candidate's only failures are undetermined runs
@@ -753,6 +757,10 @@ def friction_design(
     slide = every.peak_sliding.values
     resid = np.abs(every.residual_sliding.values)
     top = np.where(over, np.nan, every.required_top_friction.values)  # what the face needs while the statue stands
+    # The pedestal would tip (the floor's reaction leaves its base: derivation §3.5), which this
+    # model does not follow: not proven safe, and named. Checked only for a pedestal whose width
+    # and height are given.
+    tips = np.isfinite(every.pedestal_uplift_time.values) & ~over
     ds["scatter_overturned"] = (run_dims, over)
     ds["scatter_undetermined"] = (run_dims, undetermined, {
         "long_name": "statue neither overturned nor proven at rest (still moving at the end, or the run stopped)"})
@@ -760,6 +768,8 @@ def friction_design(
     ds["scatter_peak_sliding"] = (run_dims, slide, {"units": "m"})
     ds["scatter_residual_sliding"] = (run_dims, every.residual_sliding.values, {"units": "m"})
     ds["scatter_required_top_friction"] = (run_dims, every.required_top_friction.values)
+    ds["scatter_pedestal_uplift_time"] = (run_dims, every.pedestal_uplift_time.values, {
+        "units": "s", "long_name": "first instant the pedestal would tip (NaN: never, or not checked)"})
 
     # Per candidate and motion, the worst of the friction levels: the design must hold whatever
     # the friction turns out to be within the scatter.
@@ -774,6 +784,10 @@ def friction_design(
     cand = ("mu_s", "pedestal_mass")
     ds["mu_k"] = (("mu_s",), kin)
     ds["falls"] = (cand + ("motion",), falls, {"long_name": "the statue overturns at some friction level"})
+    pedestal_tips = tips.any(axis=-1) & ~falls
+    ds["pedestal_tips"] = (cand + ("motion",), pedestal_tips, {
+        "long_name": "no fall, but the pedestal would tip at some friction level (this model does not follow it)"})
+    ds["pedestal_tips_count"] = (cand, pedestal_tips.sum(axis=-1).astype(np.int64))
     ds["undetermined"] = (cand + ("motion",), unsure, {
         "long_name": "no fall, but some friction level leaves the statue moving at the end (or the run stopped)"})
     ds["clearance"] = (cand + ("motion",), clearance, {
@@ -794,6 +808,9 @@ def friction_design(
         clearance=clearance, residual=resid_max, top_friction=top_max, score=score, objective=objective,
         sliding_limit=sliding_limit, residual_limit=residual_limit, top_friction_limit=top_friction_limit,
         friction_scatter=scatter, tan_alpha=math.tan(alpha),
+        slid_off=pedestal_tips if pedestal_tips.any() else None, slid_off_how="tips its pedestal",
+        slid_off_text=("the pedestal would tip (the floor's reaction leaves its base, which this model does not "
+                       "follow: a pedestal_width axis designs it on the stack engine)"),
     )
     ds["safe"] = (cand, choice.safe, {"long_name": "the statue stands under every motion at every friction level"})
     ds["feasible"] = (cand, choice.feasible, {"long_name": "meets the sliding, residual and top-friction limits"})
@@ -1328,8 +1345,13 @@ def design_report(ds, *, title: str = "Friction design", chart: str | None = "de
         for k, motion in enumerate(ds.motion.values):
             over = sel.scatter_overturned.values[k]
             unsure = sel.scatter_undetermined.values[k]
+            tips = (np.isfinite(sel.scatter_pedestal_uplift_time.values[k]) if "scatter_pedestal_uplift_time" in sel
+                    else np.zeros(over.shape, bool))
             if over.any():
                 state = f"falls at {_levels_text(factors, over)}"
+            elif tips.any():
+                state = (f"stands, but the pedestal would tip at {_levels_text(factors, tips)} (a fall risk this "
+                         "model does not follow)")
             elif unsure.any():
                 state = f"undetermined at {_levels_text(factors, unsure)} (still moving at the end, or the run stopped)"
             else:
@@ -1379,9 +1401,12 @@ def design_report(ds, *, title: str = "Friction design", chart: str | None = "de
     for _, row in candidate_table(ds).iterrows():
         mark = " ⟵" if row["recommended"] else ""
         warn = " ⚠" if row["inverted"] else ""
+        tipping = int(ds.pedestal_tips_count.sel(mu_s=row["mu_s"], pedestal_mass=row["pedestal_mass"])) \
+            if "pedestal_tips_count" in ds else 0
+        safe_text = _fmt(bool(row["safe"])) + (f" (the pedestal tips under {tipping}/{n_mot})" if tipping else "")
         lines.append(
             f"| {_fmt(row['mu_s'])}{mark}{warn} | {_fmt(row['mu_k'])} | {_fmt(row['pedestal_mass'])} | "
-            f"{_fmt(bool(row['safe']))} | {int(row['overturn_count'])}/{n_mot} | "
+            f"{safe_text} | {int(row['overturn_count'])}/{n_mot} | "
             f"{int(row['undetermined_count'])}/{n_mot} | {_fmt(row['peak_rotation_ratio_mean'])} | "
             f"{_fmt(row['peak_rotation_ratio_max'])} | {_mm_cell(row['peak_sliding_max'])} | "
             f"{_mm_cell(row['residual_sliding_max'])} | {_fmt(row['required_top_friction_max'])} | "

@@ -65,8 +65,8 @@ def _opt(x: float) -> float | None:
 SUMMARY_FIELDS = (
     "overturned", "overturn_time", "exceeded_alpha_time", "peak_rotation", "peak_rotation_over_alpha",
     "peak_sliding", "residual_sliding", "impacts", "first_rocking_time", "first_sliding_time",
-    "required_top_friction", "impact_floor_friction_needed", "energy_balance_error", "status", "end_time",
-    "still_moving", "verdict",
+    "required_top_friction", "impact_floor_friction_needed", "top_slip_time", "pedestal_uplift_time",
+    "energy_balance_error", "status", "end_time", "still_moving", "verdict",
 )
 
 
@@ -99,6 +99,9 @@ def summary_values(raw: np.ndarray, alpha: float) -> dict[str, Any]:
         "first_sliding_time": _opt(raw[C.S_FIRST_SLIDE]),
         "required_top_friction": float(raw[C.S_TOP_RATIO]),
         "impact_floor_friction_needed": float(raw[C.S_IMPACT_FLOOR_RATIO]),
+        # the first instants the model's assumptions fail (derivation §3.5; the warnings say it in words)
+        "top_slip_time": _opt(raw[C.S_TOP_SLIP]),
+        "pedestal_uplift_time": _opt(raw[C.S_UPLIFT]),
         "energy_balance_error": float(raw[C.S_BALANCE] / raw[C.S_ENERGY_SCALE]),
         "status": status,
         "end_time": end_time,
