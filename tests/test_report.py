@@ -4,6 +4,7 @@ only real warnings, and (in the PDF) A4 pages with a footer on each."""
 from __future__ import annotations
 
 import base64
+import math
 import hashlib
 import re
 import zlib
@@ -20,7 +21,7 @@ import rocking as rk  # noqa: E402
 from rocking.report import build_content, verdict, write_report  # noqa: E402
 from rocking.report import content as report_content  # noqa: E402
 from rocking.report import pdf as report_pdf  # noqa: E402
-from rocking.report.content import ENERGY_BALANCE_LIMIT, FAIL, NOT_APPLICABLE, PASS, UNDETERMINED  # noqa: E402
+from rocking.report.content import ENERGY_BALANCE_LIMIT, FAIL, NOT_APPLICABLE, NOT_CHECKED, PASS, UNDETERMINED  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 PEDESTAL_TOML = ROOT / "examples" / "statue_on_pedestal.toml"
@@ -444,3 +445,30 @@ def test_legends_stay_off_the_data(case, request):
         for legend in legends:
             box = legend.get_window_extent(renderer)
             assert not any(_overlaps(box, ax.get_window_extent(renderer)) for ax in fig.axes)
+
+
+def test_a_pedestal_that_would_tip_fails_its_check_and_the_verdict_is_not_shown_safe():
+    """A squat statue on a pedestal 0.3 m wide and 1 m tall (50 kg each) that friction holds,
+    under a 3 m/s² sine: nothing slides or rocks ("did not overturn"), but the floor's reaction
+    leaves the pedestal's base once |a_g| > 0.2 g (derivation §3.5), at asin(0.2 g / 3)/(4π) s.
+    The report's check must fail there, and its verdict must not be coloured safe; on a pedestal
+    1 m wide it passes, and a pedestal without a height is not checked."""
+    statue = rk.Statue(width=1.0, height=1.2, mass=50.0)
+    motion = rk.Harmonic(amplitude=3.0, frequency=2.0, cycles=2, form="sin")
+    name = "pedestal stays flat (the floor's reaction within its base)"
+
+    def check(**size):
+        pedestal = rk.Pedestal(mass=50.0, friction=_friction(0.8, 0.7), **size)
+        r = rk.simulate(rk.System(statue=statue, pedestal=pedestal), motion, options=rk.Options(gravity=9.81))
+        found = {c.name: c for c in build_content(r).checks}
+        return r, found[name]
+
+    narrow, c = check(width=0.3, height=1.0)
+    t = math.asin(0.2 * 9.81 / 3.0) / (4 * math.pi)
+    assert narrow.summary()["verdict"].startswith("did not overturn")
+    assert (c.result, c.value, c.limit) == (FAIL, f"leaves its base at t = {t:.2f} s", "|x_N| ≤ 0.15 m, half its width")
+    assert narrow.summary()["pedestal_uplift_time"] == pytest.approx(t, abs=1e-12)
+    assert report_content.verdict_class(narrow, build_content(narrow).checks) == "stopped"
+    wide, c = check(width=1.0, height=1.0)
+    assert c.result == PASS and report_content.verdict_class(wide, build_content(wide).checks) == "safe"
+    assert check(width=0.3)[1].result == NOT_CHECKED

@@ -432,6 +432,23 @@ def _top_friction_check(response, s: Mapping[str, Any]) -> Check | None:
         f"μs = {top.mu_s:g}: the statue would slip on the pedestal, which this model does not simulate."))
 
 
+def _uplift_check(response, s: Mapping[str, Any]) -> Check | None:
+    """The floor's reaction under the pedestal stays within its base (derivation §3.5): else the
+    pedestal would tip, which this model does not simulate (the stack engine does). The run's
+    warnings say from when; a failed check keeps the verdict from showing as safe."""
+    pedestal = response.system.pedestal
+    if pedestal is None:
+        return None
+    name = "pedestal stays flat (the floor's reaction within its base)"
+    if pedestal.width is None or pedestal.height is None:
+        return Check(name, "–", "the pedestal's width and height not given", NOT_CHECKED)
+    limit = f"|x_N| ≤ {pedestal.width / 2:g} m, half its width"
+    t = s.get("pedestal_uplift_time")
+    if t is None:
+        return Check(name, "within its base", limit, PASS)
+    return Check(name, f"leaves its base at t = {t:.2f} s", limit, FAIL)
+
+
 def _clearance_check(response, s: Mapping[str, Any], clearance: float | None) -> Check | None:
     system = response.system
     body = "pedestal" if system.pedestal is not None else "statue"
@@ -499,6 +516,7 @@ def checks(response, clearance: float | None = None) -> list[Check]:
     found = [
         _overturn_check(s),
         _top_friction_check(response, s),
+        _uplift_check(response, s),
         _clearance_check(response, s, clearance),
         _rest_check(s),
         _impact_floor_check(response, s),
