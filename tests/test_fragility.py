@@ -183,6 +183,27 @@ def test_a_run_the_solver_stops_before_a_verdict_counts_as_a_fall_and_is_reporte
     assert "1 run(s) were stopped by the solver before a verdict" in text and "still moving" not in text
 
 
+def test_a_statue_on_a_pedestal_that_would_tip_counts_as_a_fall_and_is_reported(records):
+    """A squat statue (never rocks: tan α = 0.83) on a pedestal 0.3 m wide and 1 m tall that
+    friction (μs = 0.8) holds, under Takatori scaled to 1 and 4 m/s² PGA: the pedestal passes the
+    floor's acceleration on, and its floor reaction leaves its base once |a_g|/g > 0.2 (derivation
+    §3.5), so at 4 m/s² (0.41 g) the pedestal would tip, which the two-body model does not follow:
+    that run may not count as a survival (until 2026-12-02 it did: the statue "stood"). At
+    1 m/s² (0.10 g) it stays flat and survives."""
+    from rocking.analyses.fragility import fragility_report_lines
+
+    statue = rk.Statue(width=1.0, height=1.2, mass=50.0)
+    pedestal = rk.Pedestal(mass=50.0, friction=rk.Friction(static=0.8, kinetic=0.7), width=0.3, height=1.0)
+    rec = {RECORDS[1]: records[RECORDS[1]]}
+    ds = ida(rk.System(statue=statue, pedestal=pedestal), rec, [1.0, 4.0], free_time=3.0,
+             options=rk.Options(gravity=G), workers=1)
+    assert not ds.overturned.values.any()
+    assert np.isnan(ds.pedestal_uplift_time.values[0, 0, 0]) and ds.pedestal_uplift_time.values[0, 0, 1] > 0
+    assert ds.fall.values[0, 0].tolist() == [False, True] and int(ds.pedestal_tips.values[0]) == 1
+    text = "\n".join(fragility_report_lines(fragility_curves(ds, n_boot=10, seed=1), ds, free_time=3.0))
+    assert "1 run(s): the statue stood, but its pedestal would tip" in text
+
+
 def test_a_median_beyond_the_levels_run_is_flagged_and_the_levels_are_counted(runs):
     import matplotlib
 

@@ -146,7 +146,10 @@ def ida(
         ``solver_stopped`` the second.
         For a stack, any block that overturns (or slides off the one below) is a fall, and so,
         with ``options.stop_at_edge``, is a block that reaches the edge of the one below (status
-        ``slid_past_edge``: the run stops there), counted in ``slid_off``.
+        ``slid_past_edge``: the run stops there), counted in ``slid_off``. A statue that stands on
+        a pedestal that would tip (``pedestal_uplift_time``: checked where the pedestal's width
+        and height are given; the two-body model does not follow it) counts as a fall too, in
+        ``pedestal_tips``.
     """
     from .batch import specs_dataset
 
@@ -192,8 +195,11 @@ def ida(
     # A run the solver stopped before a verdict (max_events, inconsistent, singular, step_failed)
     # says nothing about survival: like a run still moving, it must not count as one.
     stopped = ~ds["status"].isin(["completed", "overturned", "still_moving", "slid_past_edge"])
+    # A pedestal that would tip (the floor's reaction leaves its base, derivation §3.5; checked
+    # where its width and height are given) is a fall risk the two-body model does not follow.
+    tips = ds["pedestal_uplift_time"].notnull() & ~ds["overturned"]
     # a stack stops when any of its blocks overturns (status "overturned"), the statue or not
-    ds["fall"] = ds["overturned"] | (ds["status"] == "overturned") | ds["still_moving"] | slid_off | stopped
+    ds["fall"] = ds["overturned"] | (ds["status"] == "overturned") | ds["still_moving"] | slid_off | stopped | tips
     ds["exceed"] = ds["fall"] | (ds["peak_rotation_over_alpha"] >= 1.0)
     ds["undetermined"] = (ds["still_moving"] | stopped).sum(dim=("record", "level"))
     ds["undetermined"].attrs["long_name"] = ("runs still moving at the free-motion cap or stopped by the solver "
@@ -202,6 +208,9 @@ def ida(
     ds["solver_stopped"].attrs["long_name"] = "runs the solver stopped before a verdict (counted as falls)"
     ds["slid_off"] = slid_off.sum(dim=("record", "level"))
     ds["slid_off"].attrs["long_name"] = "runs where a block slid to the edge of the one below (counted as falls)"
+    ds["pedestal_tips"] = tips.sum(dim=("record", "level"))
+    ds["pedestal_tips"].attrs["long_name"] = ("runs where the statue stood but its pedestal would tip, which the "
+                                              "two-body model does not follow (counted as falls)")
     ds.attrs.update(study="ida", im=im, im_units=IM_UNITS[im], free_time=float(free_time),
                     gravity=float(options.gravity))
     return ds
@@ -604,6 +613,11 @@ def fragility_report_lines(curves, runs, *, free_time: float, charts: Sequence[s
     if slid:
         lines += [f"**{slid} run(s): a block slid to the edge of the one below, where the stack engine stops: "
                   "counted as falls (a fall risk).**", ""]
+    tipping = int(runs.pedestal_tips.sum()) if "pedestal_tips" in runs else 0
+    if tipping:
+        lines += [f"**{tipping} run(s): the statue stood, but its pedestal would tip (the floor's reaction left its "
+                  "base), which this model does not follow: counted as falls (a fall risk).** A stack of blocks "
+                  "(the stack engine) follows the pedestal's rocking.", ""]
     lines += [f"![{im} {name.split('_')[-1].removesuffix('.png')}]({name})" for name in charts]
     return lines + [""]
 

@@ -124,9 +124,10 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
     cap."""
     from .batch import run_raw
 
-    if A <= 1.0 and not isinstance(task.system, Stack):
+    if A <= 1.0 and not isinstance(task.system, Stack) and not _may_tip(task.system):
         # |a_g| never exceeds g·tan α: nothing can start rocking (alone, or on a pedestal that
-        # passes on at most μk·g < |a_g|), so there is nothing to simulate
+        # passes on at most μk·g < |a_g|), so there is nothing to simulate; a pedestal of given
+        # width and height may tip below that, so it runs
         return task.criterion not in ("overturn", "no_impact", "exceed")
     motion = spectrum_motion(task.shape, A, beta, g_tan_alpha=g_tan_alpha, p=p, phase=task.phase, cycles=task.cycles)
     if isinstance(task.system, Stack):
@@ -144,6 +145,11 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
         return False
     if status == C.STATUS_STILL_MOVING:
         counter[2] += 1
+    if status != C.STATUS_OVERTURNED and not math.isnan(raw[C.S_UPLIFT]):
+        # the pedestal would tip (derivation §3.5), which the two-body model does not follow:
+        # a fall risk, failing under every criterion, as a stack block at the edge
+        counter[4] += 1
+        return True
     if task.criterion == "exceed":
         return not math.isnan(raw[C.S_EXCEED_TIME])
     overturned = status == C.STATUS_OVERTURNED
@@ -153,6 +159,12 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
 
 
 _STACK_SOLVER_FAILURES = ("inconsistent", "step_failed", "max_events", "lost_contact")
+
+
+def _may_tip(system: System) -> bool:
+    """Whether the solver checks that the system's pedestal stays flat (its width and height given)."""
+    pedestal = system.pedestal
+    return pedestal is not None and pedestal.width is not None and pedestal.height is not None
 
 
 def _stack_fails(task: SpectrumTask, motion: Any, counter: list[int], options: Options) -> bool:
@@ -225,9 +237,10 @@ def _spectrum_chunk(task: SpectrumTask) -> dict[str, np.ndarray]:
         "failed_runs": np.zeros(nf, dtype=np.int64),
         "undetermined_runs": np.zeros(nf, dtype=np.int64),
         "slid_off_runs": np.zeros(nf, dtype=np.int64),
+        "pedestal_tips_runs": np.zeros(nf, dtype=np.int64),
     }
     for k, beta in enumerate(task.frequency_ratios):
-        counter = [0, 0, 0, 0]
+        counter = [0, 0, 0, 0, 0]
 
         def fails(A: float, beta: float = beta) -> bool:
             return _fails(task, A, beta, g_tan_alpha, p, counter, options)
@@ -259,7 +272,8 @@ def _spectrum_chunk(task: SpectrumTask) -> dict[str, np.ndarray]:
                 out["island_upper"][k, n_isl] = 0.5 * (end[0] + end[1]) if end is not None else np.inf
             n_isl += 1
         out["n_islands"][k] = n_isl
-        out["runs"][k], out["failed_runs"][k], out["undetermined_runs"][k], out["slid_off_runs"][k] = counter
+        (out["runs"][k], out["failed_runs"][k], out["undetermined_runs"][k], out["slid_off_runs"][k],
+         out["pedestal_tips_runs"][k]) = counter
     return out
 
 
@@ -344,7 +358,9 @@ def overturning_spectrum(
         the block fails above it), ``scan_fails`` (the coarse scan), ``runs``,
         ``failed_runs`` (solver failures: max_events, singular, step_failed; for stacks also
         inconsistent and lost_contact; counted as safe), ``undetermined_runs`` (still
-        moving at the free-motion cap, counted as safe) and ``slid_off_runs`` (stacks only).
+        moving at the free-motion cap, counted as safe), ``slid_off_runs`` (stacks only) and
+        ``pedestal_tips_runs`` (a pedestal of given width and height would tip, which the
+        two-body model does not follow: counted as failing under every criterion).
 
     Notes
     -----
@@ -415,10 +431,11 @@ def overturning_spectrum(
         "failed_runs": np.zeros((ns, nb), dtype=np.int64),
         "undetermined_runs": np.zeros((ns, nb), dtype=np.int64),
         "slid_off_runs": np.zeros((ns, nb), dtype=np.int64),
+        "pedestal_tips_runs": np.zeros((ns, nb), dtype=np.int64),
     }
     for (si, r), part in zip(index, parts):
         for key, arr in full.items():
-            if key in part:  # (a chunk saved before slid_off_runs existed has none: zeros)
+            if key in part:  # (a chunk saved before slid_off_runs or pedestal_tips_runs existed has none: zeros)
                 arr[si, r.start : r.stop] = part[key]
     used = int(max(1, full["n_islands"].max()))
     n_edges = int(max(1, np.isfinite(full["edge_lower"]).sum(axis=-1).max()))
@@ -446,6 +463,9 @@ def overturning_spectrum(
                 "long_name": "runs still moving at the free-motion cap (counted as safe)"}),
             "slid_off_runs": (dims, full["slid_off_runs"], {
                 "long_name": "stack runs where a block slid to the edge of the one below (counted as failing)"}),
+            "pedestal_tips_runs": (dims, full["pedestal_tips_runs"], {
+                "long_name": "runs where the pedestal would tip, which the two-body model does not follow "
+                             "(counted as failing)"}),
         },
         coords={
             "pulse": np.array(shapes, dtype=str),
@@ -587,6 +607,11 @@ def spectrum_report(ds, *, title: str = "Overturning spectra", chart: str | None
     if slid:
         lines += [f"**In {slid} of {runs} runs a block slid to the edge of the one below, where the stack engine "
                   "stops: counted as failing (a fall risk).**", ""]
+    tipping = int(ds.pedestal_tips_runs.sum()) if "pedestal_tips_runs" in ds else 0
+    if tipping:
+        lines += [f"**In {tipping} of {runs} runs the pedestal would tip (the floor's reaction left its base), which "
+                  "this model does not follow: counted as failing (a fall risk).** A stack of blocks (the stack "
+                  "engine) follows the pedestal's rocking.", ""]
     lines += ["## Boundary", "", "a_p/(g tan α) of the smallest amplitude that fails; \"none up to "
               f"{top:.3g}\": no overturning in the scanned range; ⁺: safe islands above the boundary (listed below).",
               "", "| β = ω_p/p | " + " | ".join(_MOTION_TITLES.get(m, m) for m in pulses) + " |",
