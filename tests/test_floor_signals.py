@@ -173,6 +173,20 @@ def test_next_crest_is_the_first_local_maximum_of_the_acceleration_after_any_tim
         assert found >= 20
 
 
+def test_next_crest_from_a_crest_is_the_next_one():
+    """From a time at a cosine's crest, as computed in floating point ((kπ − φ)/ω), the next
+    crest is π/ω later, whichever side of the crest the rounding put that time (the phase
+    (ω t + φ)/π then falls just below or just above k; below, the formula gives t itself, and the
+    next crest must be taken). 2000 random crests; rtol 1e-9 on π/ω covers the rounding of t."""
+    rng = np.random.default_rng(12)
+    for _ in range(2000):
+        omega, phase, k = rng.uniform(0.5, 60.0), rng.uniform(-10.0, 10.0), int(rng.integers(5, 400))
+        t = (k * math.pi - phase) / omega
+        c = next_crest((2.0, 3.0, omega, phase, 0.0), t)
+        assert c > t
+        assert c - t == pytest.approx(math.pi / omega, rel=1e-9)
+
+
 def test_ricker_pulse_values_at_known_points():
     """The wavelet itself, independently of both implementations: a_p at t0, zero where
     2π²f²τ² = 1, and a_p·(1 − 2·π²/4)·e^{−π²/4} at τ = 1/(2f)."""

@@ -384,6 +384,22 @@ def test_the_top_slip_warning_of_a_statue_at_rest_comes_when_its_base_first_need
     assert _slip_warning_time(run(0.999 * need)) > want
 
 
+def test_a_frictionless_top_face_is_flagged_at_rest_as_soon_as_the_floor_moves():
+    """A top face given μs = 0 holds nothing: a statue at rest on a held pedestal needs
+    |a_g|/g > 0 from the first instant the floor accelerates. Under a sine from t = 0 (a_g(0) = 0)
+    the warning must start at once (the bisection ends within 1e-12 s of 0), though nothing ever
+    rocks or slides. Kills compiled.py's rest check made only for μs,top > 0 (a frictionless face
+    never flagged at rest: the run crosses its rest without a step, so no other check sees it)."""
+    from rocking.solver import compiled as C
+
+    statue = rk.Statue(width=1.0, height=1.2, mass=50.0, friction=rk.Friction(static=0.0, kinetic=0.0))
+    r = rk.simulate(on_pedestal(statue, m1=100.0, friction=rk.Friction(static=0.8, kinetic=0.7)),
+                    rk.Harmonic(amplitude=3.0, frequency=2.0, cycles=2, form="sin"), options=OPTS)
+    assert r.events == [] and r.summary()["first_rocking_time"] is None
+    assert 0.0 <= r.raw_summary[C.S_TOP_SLIP] < 1e-12
+    assert r.summary()["top_slip_time"] == r.raw_summary[C.S_TOP_SLIP]
+
+
 def _rest_motion(kind):
     if kind == "sin":
         return rk.Harmonic(amplitude=3.0, frequency=2.0, cycles=2, form="sin")
