@@ -86,6 +86,7 @@ ANALYTIC = {
     "harmonic sin": rk.Harmonic(amplitude=4.0, frequency=2.5, cycles=4.5, form="sin"),
     "harmonic reversed, rounded ω": rk.Harmonic(amplitude=-6.75, frequency=1.2, cycles=5, angular_frequency=7.53),
     "harmonic many cycles": rk.Harmonic(amplitude=3.0, frequency=1.7, cycles=30),
+    "harmonic, slow (ω < 1 rad/s)": rk.Harmonic(amplitude=2.0, frequency=0.12, cycles=1.5, form="sin"),
     "sine pulse": rk.SinePulse(amplitude=5.0, frequency=1.5),
     "sine pulse with phase": rk.SinePulse(amplitude=-7.0, frequency=0.8, phase=0.37),
     "cosine pulse": rk.CosinePulse(amplitude=8.0, frequency=2.0),

@@ -400,6 +400,18 @@ def test_a_frictionless_top_face_is_flagged_at_rest_as_soon_as_the_floor_moves()
     assert r.summary()["top_slip_time"] == r.raw_summary[C.S_TOP_SLIP]
 
 
+def test_a_figurine_of_50_grams_at_rest_needs_the_floors_ratio_too():
+    """The friction a statue at rest needs, |P_x|/P_y = |a_g|/g, does not depend on its mass: a
+    50 g figurine (P_y = 0.49 N) on a held pedestal under a 3 m/s² sine needs 3/g as a 50 kg
+    statue does, to 1e-12. Kills compiled.py's rest ratio read only where P_y > 1 N (a force
+    compared with a number of newtons: the ratio of a light object read as 0)."""
+    statue = rk.Statue(width=0.02, height=0.024, mass=0.05)
+    r = rk.simulate(on_pedestal(statue, m1=2.0, friction=rk.Friction(static=0.8, kinetic=0.7)),
+                    rk.Harmonic(amplitude=3.0, frequency=2.0, cycles=2, form="sin"), options=OPTS)
+    assert r.events == [] and r.summary()["first_rocking_time"] is None
+    assert r.summary()["required_top_friction"] == pytest.approx(3.0 / G, rel=1e-12)
+
+
 def _rest_motion(kind):
     if kind == "sin":
         return rk.Harmonic(amplitude=3.0, frequency=2.0, cycles=2, form="sin")
