@@ -105,6 +105,18 @@ def test_piece_table_matches_every_analytic_motion(name):
     assert n > 400
 
 
+def _local_pieces(motion):
+    """(loc, start, end) of every piece of the motion's table, as the solvers localise them."""
+    table, edges = _pieces(motion, motion.duration)
+    return [(tuple(float(v) for v in table[i]), edges[i], edges[i + 1]) for i in range(table.shape[0])]
+
+
+def _is_crest(motion, t, gap):
+    """Whether |a| of the motion's own ``acceleration`` at t is at least its value ``gap`` s either side."""
+    here = abs(float(motion.acceleration(t)))
+    return here >= abs(float(motion.acceleration(t - gap))) and here >= abs(float(motion.acceleration(t + gap)))
+
+
 @pytest.mark.parametrize("name", list(ANALYTIC))
 def test_crest_inside_gives_the_largest_acceleration_between_any_two_times(name):
     """crest_inside is how both solvers read the friction a face at rest needs between two
@@ -116,21 +128,17 @@ def test_crest_inside_gives_the_largest_acceleration_between_any_two_times(name)
     ½·|a''|·Δt² ≤ 1e-7 of the peak here, so 1e-12 of the peak is the allowance."""
     motion = ANALYTIC[name]
     rng = _rng(name + " crest")
-    table, edges = _pieces(motion, motion.duration)
     found = 0
-    for i in range(table.shape[0]):
-        loc = tuple(float(v) for v in table[i])
+    for loc, lo, hi in _local_pieces(motion):
         for _ in range(60):
-            t_a, t_b = np.sort(rng.uniform(edges[i], edges[i + 1], 2))
+            t_a, t_b = np.sort(rng.uniform(lo, hi, 2))
             tau = crest_inside(loc, t_a, t_b)
             best = max(abs(motion.acceleration(t_a)), abs(motion.acceleration(t_b)))
             if not math.isnan(tau):
                 found += 1
                 assert t_a < tau < t_b
-                here = abs(float(motion.acceleration(tau)))
-                step = 1e-5 * (t_b - t_a)
-                assert here >= abs(float(motion.acceleration(tau - step))) and here >= abs(float(motion.acceleration(tau + step)))
-                best = max(best, here)
+                assert _is_crest(motion, tau, 1e-5 * (t_b - t_a))
+                best = max(best, abs(float(motion.acceleration(tau))))
             dense = float(np.max(np.abs(motion.acceleration(np.linspace(t_a, t_b, 20_001)))))
             assert best >= dense - 1e-12 * motion.pga
     if name in ("rectangle pulse", "ramp"):
@@ -149,21 +157,17 @@ def test_next_crest_is_the_first_local_maximum_of_the_acceleration_after_any_tim
     rectangle and the ramp, and past a pulse's last crest."""
     motion = ANALYTIC[name]
     rng = _rng(name + " next crest")
-    table, edges = _pieces(motion, motion.duration)
     found = 0
-    for i in range(table.shape[0]):
-        loc = tuple(float(v) for v in table[i])
-        for t in rng.uniform(edges[i], edges[i + 1], 60):
+    for loc, lo, hi in _local_pieces(motion):
+        for t in rng.uniform(lo, hi, 60):
             c = next_crest(loc, t)
             if math.isinf(c):
                 continue
             found += 1
             assert c > t
-            end = min(c, edges[i + 1])  # (a crest past the piece's end is the formula's, clamped by its callers)
-            if c < edges[i + 1]:
-                step = 1e-5 * (c - t)
-                here = abs(float(motion.acceleration(c)))
-                assert here >= abs(float(motion.acceleration(c - step))) and here >= abs(float(motion.acceleration(c + step)))
+            end = min(c, hi)  # (a crest past the piece's end is the formula's, clamped by its callers)
+            if c < hi:
+                assert _is_crest(motion, c, 1e-5 * (c - t))
             a = np.abs(motion.acceleration(np.linspace(t, end, 20_001)))
             inner = a[1:-1]
             peaks = (inner > a[:-2]) & (inner > a[2:]) & (inner > 1e-9 * motion.pga)

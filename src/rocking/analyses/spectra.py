@@ -124,7 +124,9 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
     cap."""
     from .batch import run_raw
 
-    if A <= 1.0 and not isinstance(task.system, Stack) and not _may_tip(task.system):
+    two_body = not isinstance(task.system, Stack)
+    may_tip = two_body and task.system.pedestal is not None and task.system.pedestal.uplift_checked
+    if A <= 1.0 and two_body and not may_tip:
         # |a_g| never exceeds g·tan α: nothing can start rocking (alone, or on a pedestal that
         # passes on at most μk·g < |a_g|), so there is nothing to simulate; a pedestal of given
         # width and height may tip below that, so it runs
@@ -159,12 +161,6 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
 
 
 _STACK_SOLVER_FAILURES = ("inconsistent", "step_failed", "max_events", "lost_contact")
-
-
-def _may_tip(system: System) -> bool:
-    """Whether the solver checks that the system's pedestal stays flat (its width and height given)."""
-    pedestal = system.pedestal
-    return pedestal is not None and pedestal.width is not None and pedestal.height is not None
 
 
 def _stack_fails(task: SpectrumTask, motion: Any, counter: list[int], options: Options) -> bool:

@@ -147,38 +147,6 @@ def cosine_band_exit(amplitude, omega, phase, t, t_stop, lo, hi):
 
 
 @njit(cache=True, inline="always")
-def crest_inside(loc, t_a, t_b):
-    """A time strictly inside (t_a, t_b) (s) where the horizontal floor acceleration |a_h| of
-    the localised motion ``loc`` has a local maximum of the largest height found there, or NaN
-    when it has none inside (a linear piece is largest at an end).
-
-    Why: at rest every face carries the mass above it times (a_h, g + a_v), so the friction it
-    needs is |a_h|/(g + a_v); over a stretch where a_v is constant (every non-linear motion
-    here has no vertical part) that peaks at an end or at this crest, and a solver that reads
-    the forces only at its step ends or stages misses the crest. A cosine's crests are where
-    ω t + φ is a multiple of π (all of height |A|: the first one is returned); a Ricker
-    wavelet's are at τ = t − t_0 = 0 (height |a_p|) and τ = ±√(3/2)/(π f) (2|a_p| e^(−3/2))."""
-    mode = loc[0]
-    if mode == LOCAL_COSINE:
-        omega, phase = loc[2], loc[3]
-        if omega <= 0.0:
-            return math.nan
-        tau = (math.floor((omega * t_a + phase) / math.pi) + 1.0) * math.pi
-        tau = (tau - phase) / omega
-        return tau if t_a < tau < t_b else math.nan
-    if mode == LOCAL_RICKER:
-        f, t0 = loc[2], loc[3]
-        if t_a < t0 < t_b:
-            return t0
-        side = math.sqrt(1.5) / (math.pi * f)
-        if t_a < t0 - side < t_b:
-            return t0 - side
-        if t_a < t0 + side < t_b:
-            return t0 + side
-    return math.nan
-
-
-@njit(cache=True, inline="always")
 def next_crest(loc, t):
     """The first local maximum of |a_h| of ``loc`` strictly after time t (s), or inf if it has no
     more: a cosine's where ω t + φ is a multiple of π, a Ricker wavelet's at τ = −√(3/2)/(π f),
@@ -199,3 +167,24 @@ def next_crest(loc, t):
         if t < t0 + side:
             return t0 + side
     return math.inf
+
+
+@njit(cache=True, inline="always")
+def crest_inside(loc, t_a, t_b):
+    """A time strictly inside (t_a, t_b) (s) where the horizontal floor acceleration |a_h| of
+    the localised motion ``loc`` has a local maximum of the largest height found there, or NaN
+    when it has none inside (a linear piece is largest at an end).
+
+    Why: at rest every face carries the mass above it times (a_h, g + a_v), so the friction it
+    needs is |a_h|/(g + a_v); over a stretch where a_v is constant (every non-linear motion
+    here has no vertical part) that peaks at an end or at this crest, and a solver that reads
+    the forces only at its step ends or stages misses the crest. The first crest after t_a
+    (next_crest) is the one, since a cosine's crests all have height |A|, but for a Ricker
+    wavelet's centre, the highest (|a_p| against 2|a_p| e^(−3/2) at its sides), if it follows
+    inside."""
+    c = next_crest(loc, t_a)
+    if not c < t_b:
+        return math.nan
+    if loc[0] == LOCAL_RICKER and c < loc[3] < t_b:
+        return loc[3]
+    return c

@@ -119,6 +119,12 @@ class Pedestal:
             if getattr(self, name) is not None:
                 _positive(f"pedestal.{name}", getattr(self, name))
 
+    @property
+    def uplift_checked(self) -> bool:
+        """Whether the solver checks that the pedestal stays flat: it needs both its width and
+        its height (derivation §3.5)."""
+        return self.width is not None and self.height is not None
+
 
 @dataclass(frozen=True, kw_only=True, slots=True)
 class System:

@@ -440,7 +440,7 @@ def _uplift_check(response, s: Mapping[str, Any]) -> Check | None:
     if pedestal is None:
         return None
     name = "pedestal stays flat (the floor's reaction within its base)"
-    if pedestal.width is None or pedestal.height is None:
+    if not pedestal.uplift_checked:
         return Check(name, "–", "the pedestal's width and height not given", NOT_CHECKED)
     limit = f"|x_N| ≤ {pedestal.width / 2:g} m, half its width"
     t = s.get("pedestal_uplift_time")
