@@ -2082,7 +2082,9 @@ def test_a_floor_dropping_faster_than_gravity_under_a_rocking_statue_is_warned_w
         said = [w for w in r.warnings if words in w]
         assert len(said) == 1, r.warnings
         t_warn = float(re.search(r"from t = ([0-9.]+) s", said[0]).group(1))
-        assert t0 - 1e-4 <= t_warn <= t1, (check, t_warn)
+        # (the warning's first instant lies after the last sample that holds, t0 − 0.1 ms, and
+        # the text rounds it to 0.1 ms: 0.9981 for 0.99814 s)
+        assert t0 - 1.5e-4 <= t_warn <= t1, (check, t_warn)
 
 
 def test_the_uplift_warning_falls_inside_the_uplift_seen_in_the_saved_samples():

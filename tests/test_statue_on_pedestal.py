@@ -455,6 +455,111 @@ def test_the_uplift_warning_of_a_tall_narrow_pedestal_under_a_resting_statue(kin
     assert np.isnan(wide.raw_summary[C.S_UPLIFT]) and not any("uplift" in w for w in wide.warnings)
 
 
+def _moving_case(case):
+    """(system, motion, the summary slots the case's warnings fill) of the test below."""
+    from rocking.solver import compiled as C
+
+    held = rk.Friction(static=0.8, kinetic=0.7)
+    sine = rk.Harmonic(amplitude=3.5, frequency=1.5, cycles=3, form="sin")
+    if case.startswith("top slip"):
+        mu = float(case.split()[-1])
+        statue = rk.Statue(width=0.4, height=1.6, mass=100.0, friction=rk.Friction(static=mu, kinetic=mu))
+        return rk.System(statue=statue, pedestal=rk.Pedestal(mass=100.0, friction=held)), sine, (C.S_TOP_SLIP,)
+    statue = rk.Statue(width=0.4, height=1.6, mass=100.0)
+    if case.startswith("uplift"):
+        width, height = (float(v) for v in case.split()[1:])
+        pedestal = rk.Pedestal(mass=100.0, friction=held, width=width, height=height)
+        return rk.System(statue=statue, pedestal=pedestal), sine, (C.S_UPLIFT,)
+    # a vertical floor acceleration that dips to −1.2 g at 1.5 s, while the statue rocks
+    t = np.round(np.arange(0.0, 3.0, 0.01), 10)
+    motion = GroundMotion(time=t, values=3.5 * np.sin(3.0 * np.pi * t), vertical=-1.2 * G * np.exp(-((t - 1.5) / 0.1) ** 2))
+    return rk.System(statue=statue, pedestal=rk.Pedestal(mass=100.0, friction=held)), motion, (C.S_N_NONPOSITIVE,
+                                                                                             C.S_PY_NONPOSITIVE)
+
+
+def _first_failing_sample(r, motion, slot):
+    """Index of the first saved sample at which the warning's check fails, judged from the sympy
+    derivation's forces (tests/oracles/lagrange.py) at the saved state, and the regime's own
+    formula for each check (derivation §3.5), not from the solver's forces."""
+    from rocking.solver import compiled as C
+
+    params = energy.lagrange_params(r.system, G)
+    names = {0: "stick-rest", 1: "stick-rock", 2: "slide-rest", 3: "slide-rock"}
+    a_g, a_v = motion.acceleration(r.t), motion.vertical_acceleration(r.t)
+    for i in range(r.t.size):
+        code = int(r.regime[i])
+        s = int(np.sign(r.theta[i])) if code & 1 else 0
+        sigma = int(np.sign(r.u_dot[i])) if code & 2 else None
+        if (code & 1 and s == 0) or (code & 2 and sigma == 0):
+            continue  # an onset sample: no pivot or direction yet (the check holds there in every case here)
+        udd, _, n, _, px, py = lagrange.accelerations(names[code], params, r.state[i], a_g[i], a_v[i], s=s or None,
+                                                      sigma=sigma)
+        if slot == C.S_TOP_SLIP:
+            fails = abs(px) > r.system.statue.friction.mu_s * py
+        elif slot == C.S_UPLIFT:
+            x_n = lagrange.pedestal_center_of_pressure(params, r.system.pedestal.height, s, px, py, n, a_g[i] + udd)
+            fails = n > 0.0 and abs(x_n) > 0.5 * r.system.pedestal.width
+        elif slot == C.S_N_NONPOSITIVE:
+            fails = n <= 0.0
+        else:
+            fails = py <= 0.0
+        if fails:
+            return i
+    raise AssertionError("the check never fails on the samples")
+
+
+@pytest.mark.parametrize("case", ["top slip 0.26", "top slip 0.27", "uplift 0.6 1.0", "uplift 0.65 1.0",
+                                  "uplift 0.8 1.5", "lift-off"])
+def test_a_warning_while_the_statue_rocks_comes_when_its_check_first_fails(case):
+    """A statue 0.4 × 1.6 m rocking on a pedestal that μs = 0.8 holds, under a sine of 3.5 m/s²
+    at 1.5 Hz: its base needs more than μs,top = 0.26 or 0.27 from the pedestal's top (peak 0.275);
+    the pedestal's base (0.6–0.8 m wide, 1–1.5 m tall) has the floor's normal force move past its
+    edge; or, under a vertical floor acceleration dipping to −1.2 g, the floor's normal force and
+    the statue's base force reach zero. Each first failure comes while the statue rocks, between
+    step ends. The warning's time must lie between the last saved sample (every 0.1 ms) where the
+    check holds and the first where it fails, judged from the sympy derivation's forces at those
+    states. Until 2026-12-02 a warning took the first step end that failed the check: the top
+    slip at 0.26 came at 0.1409 s for 0.1009 (40 ms late), the uplift at 0.6 m at 0.1409 s for
+    0.0968, that at 0.65 m not at all (the normal force left the base and came back inside one
+    step), the lift-off at the record's sample 1.46 s for 1.4570 s."""
+    system, motion, slots = _moving_case(case)
+    r = rk.simulate(system, motion, options=rk.Options(gravity=G, save_dt=1e-4))
+    assert r.summary()["first_rocking_time"] < 0.1
+    for slot in slots:
+        t_warn = float(r.raw_summary[slot])
+        i = _first_failing_sample(r, motion, slot)
+        assert r.regime[i] & 1 and r.t[i] > r.summary()["first_rocking_time"] + 1e-3
+        assert r.t[i - 1] < t_warn <= r.t[i] + 1e-12, (slot, r.t[i - 1], t_warn, r.t[i])
+
+
+@pytest.mark.parametrize("floor_mu", [0.8, 0.1])
+def test_the_lift_off_warnings_at_rest_or_sliding_come_when_the_floor_falls_faster_than_g(floor_mu):
+    """A squat statue (1 × 1 m) on a pedestal (μs = 0.8 or 0.1), under a weak sine (0.35 m/s²)
+    and a vertical floor acceleration that dips to −1.2 g at 1.5 s: the pedestal slides (from
+    0.06 s, or once μs·(g + a_v) falls below |a_h| near 1.45 s) and the statue rests on it. Until
+    the statue rocks, N and P_y are the weights times g + a_v: both reach zero where a_v = −g first
+    (brentq on the record's linear pieces, to 1e-15 s). Both warnings must come then, to 1e-12 s.
+    Until 2026-12-02 neither was checked unless the statue rocked (here that instant is also an
+    event, the rocking onset at zero threshold, whose post-event check caught it: this guards the
+    checks in every regime, not a time that was wrong)."""
+    from scipy.optimize import brentq
+
+    from rocking.solver import compiled as C
+
+    t = np.round(np.arange(0.0, 3.0, 0.01), 10)
+    motion = GroundMotion(time=t, values=0.35 * np.sin(3.0 * np.pi * t), vertical=-1.2 * G * np.exp(-((t - 1.5) / 0.1) ** 2))
+    statue = rk.Statue(width=1.0, height=1.0, mass=100.0)
+    pedestal = rk.Pedestal(mass=100.0, friction=rk.Friction(static=floor_mu, kinetic=0.75 * floor_mu))
+    r = rk.simulate(rk.System(statue=statue, pedestal=pedestal), motion, options=OPTS)
+    first = np.flatnonzero(G + motion.vertical <= 0.0)[0]
+    want = brentq(lambda x: G + float(motion.vertical_acceleration(x)), t[first - 1], t[first], xtol=1e-15)
+    assert r.summary()["first_rocking_time"] == pytest.approx(want, abs=1e-9)  # not before
+    assert r.summary()["first_sliding_time"] < want  # (μs·(g + a_v) falls below |a_h| first)
+    assert r.raw_summary[C.S_N_NONPOSITIVE] == pytest.approx(want, abs=1e-12)
+    assert r.raw_summary[C.S_PY_NONPOSITIVE] == pytest.approx(want, abs=1e-12)
+    assert sum("would jump" in w for w in r.warnings) == 1 and sum("would lift off" in w for w in r.warnings) == 1
+
+
 @pytest.mark.parametrize("kind", ["cosine", "ricker", "ricker-fast", "linear-with-vertical"])
 def test_the_first_failure_at_rest_is_the_first_crossing_on_any_stretch(kind):
     """The search behind both warnings at rest (compiled._first_failure), on 400 random stretches

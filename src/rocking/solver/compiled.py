@@ -91,6 +91,12 @@ N_DIAG = 7  # extra right-hand-side outputs: a_g, a_v, F, N, P_x, P_y, ok (not i
 # step is then ≥ 4× shorter than the tolerance needs, and the interpolant's error (∝ h⁸) is
 # 1e-5 of what it would be at the tolerance. Longer steps take a step to the event instead.
 DENSE_EVENT_ERROR = 1e-5
+# The four checks of the model's assumptions behind the run's warnings, in the order of their
+# slots in ``gmin`` (after the guards and the top-face ratio) and of ``watch``: the statue would
+# slip on the pedestal, the pedestal would uplift, the floor's normal force N ≤ 0, the statue's
+# base force P_y ≤ 0. Their summary entries hold the first instant each fails.
+N_CHECKS = 4
+CHECK_SLOTS = (S_TOP_SLIP, S_UPLIFT, S_N_NONPOSITIVE, S_PY_NONPOSITIVE)
 
 
 @njit(cache=True)
@@ -158,12 +164,34 @@ def rhs(t, y, p, sig, s, loc, out):
 
 
 @njit(cache=True, inline="always")
-def _stages(t, y, h, K, work, p, sig, s, loc, gmin, c, a_tab, n_stages):
+def _check_fails(p, s, a, udd, n_full, px, py, which):
+    """Whether check ``which`` (see N_CHECKS) fails at a state whose floor acceleration a, ü
+    and forces (N, P_x, P_y; N) are known: |P_x| > μs,top·P_y, |x_N| > b₁ (derivation §3.5),
+    N ≤ 0 or P_y ≤ 0."""
+    if which == 0:
+        return p[MU_TOP] >= 0.0 and abs(px) > p[MU_TOP] * py
+    if which == 1:
+        b1 = pedestal_half_width(p)
+        if b1 <= 0.0:
+            return False
+        xn = pressure_centre(p, s, a, udd, px, py, n_full)
+        return math.isfinite(xn) and abs(xn) > b1
+    if which == 2:
+        return n_full <= 0.0
+    return py <= 0.0
+
+
+@njit(cache=True, inline="always")
+def _stages(t, y, h, K, work, p, sig, s, loc, gmin, watch, c, a_tab, n_stages):
     """Stages 1…n_stages−1 of an explicit Runge–Kutta step (tableau c, a_tab) into K, with the
-    threshold guards and the top-face friction ratio tracked at every stage into ``gmin``."""
+    threshold guards and the top-face friction ratio tracked at every stage into ``gmin``, and,
+    for each check still watched (``watch``), the smallest fraction c of the step at whose stage
+    it fails (gmin[N_GUARDS + 1 + check]; +inf if none)."""
     for i in range(N_GUARDS):
         gmin[i] = np.inf
     gmin[N_GUARDS] = 0.0
+    for w in range(N_CHECKS):
+        gmin[N_GUARDS + 1 + w] = np.inf
     n = N_STATE  # a constant: the stage sums unroll
     for stage in range(1, n_stages):
         for j in range(n):
@@ -188,24 +216,29 @@ def _stages(t, y, h, K, work, p, sig, s, loc, gmin, c, a_tab, n_stages):
         # (while |θ| ≤ α: beyond, the statue is toppling and the ratio is no design quantity).
         if py > 0.0 and abs(work[2]) <= p[ALPHA]:
             gmin[N_GUARDS] = max(gmin[N_GUARDS], abs(px) / py)
+        # The warnings' first instants: a failure that starts and ends inside a step shows
+        # here, and its smallest c bounds the search on the dense output (_first_check_failure).
+        for w in range(N_CHECKS):
+            if watch[w] and c[stage] < gmin[N_GUARDS + 1 + w] and _check_fails(p, s, a, udd, nn, px, py, w):
+                gmin[N_GUARDS + 1 + w] = c[stage]
 
 
 @njit(cache=True, _nrt=False)
-def _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin, fsal):
+def _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin, watch, fsal):
     """One DOP853 step; K[0] = rhs(t, y) on entry, K[FSAL] = rhs(t + h, y_new) on exit if
     ``fsal`` (a step to an event skips it: the regime changes there). ``gmin`` receives the
     smallest values of the threshold guards at the interior stages."""
-    _stages(t, y, h, K, work, p, sig, s, loc, gmin, dop853.C, dop853.A, dop853.N_STAGES)
+    _stages(t, y, h, K, work, p, sig, s, loc, gmin, watch, dop853.C, dop853.A, dop853.N_STAGES)
     dop853.advance(y, K, h, y_new)
     if fsal:
         rhs(t + h, y_new, p, sig, s, loc, K[dop853.FSAL])
 
 
 @njit(cache=True, _nrt=False)
-def _step5(t, y, h, K, work, y_new, p, sig, s, loc, gmin):
+def _step5(t, y, h, K, work, y_new, p, sig, s, loc, gmin, watch):
     """One Dormand–Prince 5(4) step (FSAL row 6): for steps cut short by a sample of a record,
     where 12 stages would buy accuracy the short step already has."""
-    _stages(t, y, h, K, work, p, sig, s, loc, gmin, dopri5.C, dopri5.A, 6)
+    _stages(t, y, h, K, work, p, sig, s, loc, gmin, watch, dopri5.C, dopri5.A, 6)
     dopri5.advance(y, K, h, y_new)
     rhs(t + h, y_new, p, sig, s, loc, K[FSAL5])
 
@@ -329,6 +362,45 @@ def _theta_dot_root(y0, F, f_lo, f_hi, x_hi):
     return dop853.dense_sum_root(y0, F, 3, 1, 1, f_lo, f_hi, x_hi)
 
 
+@njit(cache=True, _nrt=False)
+def _check_at(p, sig, s, y0, F, h, x, loc, t0, work, which):
+    """Whether check ``which`` fails on the dense output of the step, at fraction x."""
+    dop853.dense(y0, F, x, work)
+    a, av = _ground(loc, t0 + x * h)
+    udd, _, _, _, n_full, px, py, _, _ = evaluate_all(p, sig, s, work[1], work[2], work[3], a, av)
+    return _check_fails(p, s, a, udd, n_full, px, py, which)
+
+
+@njit(cache=True, _nrt=False)
+def _first_check_failure(p, sig, s, y0, F, h, t0, x_hi, loc, work, which):
+    """The first instant (s) in the step from t0 at which check ``which`` fails, given it holds
+    at t0 and failed at a stage or the end, at fraction x_hi of the step: on the dense output,
+    the first of 16 samples up to x_hi that fails, then the crossing before it bisected to the
+    last bit of max(t, 1 s). NaN when the dense output holds at x_hi (the stage's failure was within the step's
+    error; the next point checked decides). Until 2026-12-02 a warning took the time of the
+    first step end at which its check failed: up to a step late (ms while rocking)."""
+    if not _check_at(p, sig, s, y0, F, h, x_hi, loc, t0, work, which):
+        return math.nan
+    if _check_at(p, sig, s, y0, F, h, 0.0, loc, t0, work, which):
+        return t0  # (the run's start, which no check precedes)
+    lo, hi = 0.0, x_hi
+    for k in range(1, 16):
+        x = x_hi * k / 16.0
+        if _check_at(p, sig, s, y0, F, h, x, loc, t0, work, which):
+            hi = x
+            break
+        lo = x
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if not lo < mid < hi or (hi - lo) * h <= 2.3e-16 * max(abs(t0), 1.0):
+            break
+        if _check_at(p, sig, s, y0, F, h, mid, loc, t0, work, which):
+            hi = mid
+        else:
+            lo = mid
+    return t0 + hi * h
+
+
 @njit(cache=True, inline="always")
 def _cross_breakpoint(p, y, sig, s, t, t_end, ib, breakpoints, pieces, loc, events, n_ev, max_events,
                       indeterminate):
@@ -377,7 +449,8 @@ def _rest_point(p, y, loc, t):
     (derivation §3.5): the ratio |P_x|/P_y the statue's base needs (0 where P_y ≤ 0 or |θ| > α,
     as in the loop), and by how much the model's assumptions fail there: |P_x| − μs,top·P_y (the
     statue slips on the pedestal if > 0) and |x_N| − b₁ (the pedestal uplifts if > 0), each −inf
-    when its check is off (no top friction given; no pedestal width or height)."""
+    when its check is off (no top friction given; no pedestal width or height); and −N and −P_y
+    (the floor's normal force and the statue's base force, N: the bodies would jump if ≥ 0)."""
     a, av = _ground(loc, t)
     _, _, _, _, n_full, px, py, _, _ = evaluate_all(p, 0, 0, y[1], y[2], y[3], a, av)
     ratio = abs(px) / py if py > 0.0 and abs(y[2]) <= p[ALPHA] else 0.0
@@ -388,7 +461,7 @@ def _rest_point(p, y, loc, t):
         xn = pressure_centre(p, 0, a, 0.0, px, py, n_full)
         if math.isfinite(xn):
             uplift = abs(xn) - b1
-    return ratio, slip, uplift
+    return ratio, slip, uplift, -n_full, -py
 
 
 @njit(cache=True, _nrt=False)
@@ -403,31 +476,41 @@ def _rest_checks(p, y, loc, t_a, t_b, summ):
     harmonic or a pulse (no vertical part) at an end or at a crest of |a_g| (crest_inside).
     Until 2026-12-02 neither warning was checked at rest (a tall, narrow pedestal tipping under
     a resting statue went unflagged)."""
-    ratio, slip, uplift = _rest_point(p, y, loc, t_a)
-    r_b, slip_b, uplift_b = _rest_point(p, y, loc, t_b)
+    ratio, slip, uplift, jump, lift = _rest_point(p, y, loc, t_a)
+    r_b, slip_b, uplift_b, jump_b, lift_b = _rest_point(p, y, loc, t_b)
     ratio, slip, uplift = max(ratio, r_b), max(slip, slip_b), max(uplift, uplift_b)
+    jump, lift = max(jump, jump_b), max(lift, lift_b)
     tau = crest_inside(loc, t_a, t_b)
     if tau == tau:
-        r_c, slip_c, uplift_c = _rest_point(p, y, loc, tau)
+        r_c, slip_c, uplift_c, _, _ = _rest_point(p, y, loc, tau)
         ratio, slip, uplift = max(ratio, r_c), max(slip, slip_c), max(uplift, uplift_c)
     if slip > 0.0 and math.isnan(summ[S_TOP_SLIP]):
         summ[S_TOP_SLIP] = _first_failure(p, y, loc, t_a, t_b, 1)
     if uplift > 0.0 and math.isnan(summ[S_UPLIFT]):
         summ[S_UPLIFT] = _first_failure(p, y, loc, t_a, t_b, 2)
+    # N and P_y at rest are ∝ g + a_v: linear on a record's piece, constant on the others (a
+    # vertical floor motion is a record's), so an end shows a failure and bisection finds it
+    if jump >= 0.0 and math.isnan(summ[S_N_NONPOSITIVE]):
+        summ[S_N_NONPOSITIVE] = _first_failure(p, y, loc, t_a, t_b, 3)
+    if lift >= 0.0 and math.isnan(summ[S_PY_NONPOSITIVE]):
+        summ[S_PY_NONPOSITIVE] = _first_failure(p, y, loc, t_a, t_b, 4)
     return ratio
 
 
 @njit(cache=True, _nrt=False)
 def _fails(p, y, loc, t, which):
-    """Whether check ``which`` of _rest_point (1: top slip, 2: uplift) fails at rest at t."""
-    return _rest_point(p, y, loc, t)[which] > 0.0
+    """Whether check ``which`` of _rest_point (1: top slip, 2: uplift, 3: N ≤ 0, 4: P_y ≤ 0)
+    fails at rest at t."""
+    v = _rest_point(p, y, loc, t)[which]
+    return v > 0.0 if which <= 2 else v >= 0.0
 
 
 @njit(cache=True, _nrt=False)
 def _first_failure(p, y, loc, t_a, t_b, which):
     """The first time in [t_a, t_b] (s) at which check ``which`` of _rest_point fails at rest, or
-    NaN if it never does there. For the warning's time. Both checks grow with |a_g|/(g + a_v),
-    so between two crests of |a_g| (next_crest) a failure shows at an end: the crests are
+    NaN if it never does there. For the warning's time. Checks 1 and 2 grow with
+    |a_g|/(g + a_v), and 3 and 4 with −(g + a_v) (only a record's linear pieces have a vertical
+    part), so between two crests of |a_g| (next_crest) a failure shows at an end: the crests are
     visited in order from t_a, and the crossing before the first failing one (or t_b) is then
     bisected to the last bit, the only one between it and the crest before."""
     if _fails(p, y, loc, t_a, which):
@@ -503,10 +586,11 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
         np.empty(N_GUARDS),  # g0: guards at the step start
         np.empty(N_GUARDS),  # g1: guards at the step end
         np.empty(N_GUARDS),  # gbuf
-        np.empty(N_GUARDS + 1),  # gmin: + the largest top-face friction ratio at the stages
+        np.empty(N_GUARDS + 1 + N_CHECKS),  # gmin: + the largest top-face ratio, the checks' first failures
         np.empty(N_GUARDS),  # near
         np.ones(N_GUARDS, dtype=np.bool_),  # armed
         np.empty(2 * N_GUARDS),  # gband: scratch of rest_band
+        np.ones(N_CHECKS, dtype=np.bool_),  # watch: the checks whose warning is not set yet
     )
     pieces = _piece_table(sig_h, sig_v, breakpoints, t0, t_end)
     n_out, n_ev = _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt, save, n_grid, cap,
@@ -519,11 +603,14 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
 # array passed to, or inlined into, a function — a fifth to two fifths of the run time (perf).
 @njit(cache=True, _nrt=False)
 def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt, save, n_grid, cap, max_events,
-               t_settle, stop_flag, summ, t_out, y_out, r_out, events, y, y_new, work, ye, K, Ke, F, g0, g1, gbuf, gmin, near, armed, gband):
+               t_settle, stop_flag, summ, t_out, y_out, r_out, events, y, y_new, work, ye, K, Ke, F, g0, g1, gbuf, gmin, near, armed, gband,
+               watch):
     """The event-driven loop of :func:`integrate` on preallocated arrays; returns the numbers of
     saved samples and of events."""
     for i in range(N_SUMMARY):
         summ[i] = math.nan
+    watch[0] = p[MU_TOP] >= 0.0
+    watch[1] = pedestal_half_width(p) > 0.0
     # An interior minimum of a threshold guard is searched for a sign change only when it comes
     # this close to zero (3 % of the guard's natural scale): the cost stays with grazing steps.
     for i in range(N_GUARDS):
@@ -656,12 +743,12 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
         # 12 stages for the same accuracy: take a 5th-order step there.
         low_order = h < h_wanted
         if low_order:
-            _step5(t, y, h, K, work, y_new, p, sig, s, loc, gmin)
+            _step5(t, y, h, K, work, y_new, p, sig, s, loc, gmin, watch)
             err = dopri5.error_norm(y, y_new, K, h, rtol, atol, 4)
             exponent = 0.2
             fs = FSAL5
         else:
-            _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin, True)
+            _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin, watch, True)
             err = dop853.error_norm(y, y_new, K, h, rtol, atol, 4)
             exponent = dop853.ERROR_EXPONENT
             fs = dop853.FSAL
@@ -782,8 +869,23 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
 
         if first < 0:
             top_ratio = max(top_ratio, gmin[N_GUARDS])
-            if sig == 0 and s == 0:
+            at_rest = sig == 0 and s == 0
+            if at_rest:
                 top_ratio = max(top_ratio, _rest_checks(p, y, loc, t, t1, summ))
+            for w in range(N_CHECKS):
+                # (at rest the top slip and the uplift are found by _rest_checks, exactly)
+                if watch[w] and math.isnan(summ[CHECK_SLOTS[w]]) and (w >= 2 or not at_rest):
+                    x_hi = gmin[N_GUARDS + 1 + w]
+                    if _check_fails(p, s, K[fs, 6], K[fs, 1], K[fs, 9], K[fs, 10], K[fs, 11], w):
+                        x_hi = 1.0
+                    if x_hi <= 1.0:
+                        if not need_dense:
+                            need_dense = True
+                            if low_order:
+                                dopri5.prepare_dense_nested(y, K, h, F)
+                            else:
+                                _prepare_dense(t, y, y_new, h, K, work, F, p, sig, s, loc)
+                        summ[CHECK_SLOTS[w]] = _first_check_failure(p, sig, s, y, F, h, t, x_hi, loc, work, w)
             for j in range(N_STATE):
                 y[j] = y_new[j]
             t = t1
@@ -821,10 +923,25 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                 # Otherwise a step to the event (8th order), not the interpolant.
                 for j in range(K.shape[1]):
                     Ke[0, j] = K[0, j]
-                _step(t, y, te - t, Ke, work, ye, p, sig, s, loc, gmin, False)
+                _step(t, y, te - t, Ke, work, ye, p, sig, s, loc, gmin, watch, False)
                 top_ratio = max(top_ratio, gmin[N_GUARDS])  # stages up to the event only
-            if sig == 0 and s == 0:
+                for w in range(N_CHECKS):  # (as fractions of the step the dense output is of)
+                    gmin[N_GUARDS + 1 + w] *= x_first
+            at_rest = sig == 0 and s == 0
+            if at_rest:
                 top_ratio = max(top_ratio, _rest_checks(p, y, loc, t, te, summ))
+            if x_first > 0.0:
+                # The warnings' failures up to the event (F holds the step's dense output: the
+                # event was located on it), the state just before the event included.
+                a, av = _ground(loc, te)
+                udd_e, _, _, _, n_e, px_e, py_e, _, _ = evaluate_all(p, sig, s, ye[1], ye[2], ye[3], a, av)
+                for w in range(N_CHECKS):
+                    if watch[w] and math.isnan(summ[CHECK_SLOTS[w]]) and (w >= 2 or not at_rest):
+                        x_hi = gmin[N_GUARDS + 1 + w]
+                        if _check_fails(p, s, a, udd_e, n_e, px_e, py_e, w):
+                            x_hi = min(x_hi, x_first)
+                        if x_hi <= x_first:
+                            summ[CHECK_SLOTS[w]] = _first_check_failure(p, sig, s, y, F, h, t, x_hi, loc, work, w)
             for j in range(N_STATE):
                 y[j] = ye[j]
             t = te
@@ -912,13 +1029,17 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
             xn = pressure_centre(p, s, a, udd, px, py, n_full)
             if math.isfinite(xn) and abs(xn) > b1:
                 summ[S_UPLIFT] = t
-        if s != 0:
-            if n_full <= 0.0:
-                if math.isnan(summ[S_N_NONPOSITIVE]):
-                    summ[S_N_NONPOSITIVE] = t
-            if py <= 0.0:
-                if math.isnan(summ[S_PY_NONPOSITIVE]):
-                    summ[S_PY_NONPOSITIVE] = t
+        # in every regime (until 2026-12-02 only while the statue rocked: a vertical floor
+        # acceleration below −g under a sliding or resting stack went unflagged)
+        if n_full <= 0.0 and math.isnan(summ[S_N_NONPOSITIVE]):
+            summ[S_N_NONPOSITIVE] = t
+        if py <= 0.0 and math.isnan(summ[S_PY_NONPOSITIVE]):
+            summ[S_PY_NONPOSITIVE] = t
+        # the checks the next step's stages track
+        watch[0] = p[MU_TOP] >= 0.0 and math.isnan(summ[S_TOP_SLIP])
+        watch[1] = b1 > 0.0 and math.isnan(summ[S_UPLIFT])
+        watch[2] = math.isnan(summ[S_N_NONPOSITIVE])
+        watch[3] = math.isnan(summ[S_PY_NONPOSITIVE])
 
     if status == STATUS_COMPLETED and (sig != 0 or s != 0):
         status = STATUS_STILL_MOVING  # the time ran out, not the motion
