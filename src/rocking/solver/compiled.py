@@ -218,9 +218,16 @@ def _stages(t, y, h, K, work, p, sig, s, loc, gmin, watch, c, a_tab, n_stages):
             gmin[N_GUARDS] = max(gmin[N_GUARDS], abs(px) / py)
         # The warnings' first instants: a failure that starts and ends inside a step shows
         # here, and its smallest c bounds the search on the dense output (_first_check_failure).
-        for w in range(N_CHECKS):
-            if watch[w] and c[stage] < gmin[N_GUARDS + 1 + w] and _check_fails(p, s, a, udd, nn, px, py, w):
-                gmin[N_GUARDS + 1 + w] = c[stage]
+        # (written out: the cheap tests of N and P_y first, and no loop in this innermost one)
+        cs = c[stage]
+        if nn <= 0.0 and watch[2] and cs < gmin[N_GUARDS + 3]:
+            gmin[N_GUARDS + 3] = cs
+        if py <= 0.0 and watch[3] and cs < gmin[N_GUARDS + 4]:
+            gmin[N_GUARDS + 4] = cs
+        if watch[0] and cs < gmin[N_GUARDS + 1] and _check_fails(p, s, a, udd, nn, px, py, 0):
+            gmin[N_GUARDS + 1] = cs
+        if watch[1] and cs < gmin[N_GUARDS + 2] and _check_fails(p, s, a, udd, nn, px, py, 1):
+            gmin[N_GUARDS + 2] = cs
 
 
 @njit(cache=True, _nrt=False)
