@@ -488,7 +488,8 @@ def choose_design(
         elif fell:
             parts.append(f"the statue falls under {len(fell)} of {n_mot} motions: {_names(fell)}")
         if edge:
-            parts.append(f"{slid_off_text} (a fall risk) under {len(edge)} of {n_mot} motions: {_names(edge)}")
+            risk = "" if "fall risk" in slid_off_text else " (a fall risk)"  # (a text may say it itself)
+            parts.append(f"{slid_off_text}{risk} under {len(edge)} of {n_mot} motions: {_names(edge)}")
         if moving:
             parts.append(f"undetermined (still moving at the end, or the run stopped) under {len(moving)}: "
                          f"{_names(moving)}")
@@ -809,8 +810,8 @@ def friction_design(
         sliding_limit=sliding_limit, residual_limit=residual_limit, top_friction_limit=top_friction_limit,
         friction_scatter=scatter, tan_alpha=math.tan(alpha),
         slid_off=pedestal_tips if pedestal_tips.any() else None, slid_off_how="tips its pedestal",
-        slid_off_text=("the pedestal would tip (the floor's reaction leaves its base, which this model does not "
-                       "follow: a pedestal_width axis designs it on the stack engine)"),
+        slid_off_text=("the pedestal would tip, a fall risk (the floor's reaction leaves its base, which this model "
+                       "does not follow: a pedestal_width axis designs it on the stack engine),"),
     )
     ds["safe"] = (cand, choice.safe, {"long_name": "the statue stands under every motion at every friction level"})
     ds["feasible"] = (cand, choice.feasible, {"long_name": "meets the sliding, residual and top-friction limits"})
