@@ -532,6 +532,37 @@ def test_a_warning_while_the_statue_rocks_comes_when_its_check_first_fails(case)
         assert r.t[i - 1] < t_warn <= r.t[i] + 1e-12, (slot, r.t[i - 1], t_warn, r.t[i])
 
 
+@pytest.mark.parametrize("amplitude", [3.5, 3.0])
+def test_a_top_face_just_weaker_than_the_rocking_statue_needs_is_warned(amplitude):
+    """The rocking statue of the test above, under its sine or one of 3.0 m/s², with the top face's
+    μs 0.1 % below the friction its base needs (`required_top_friction`, above tan α = 0.25: the
+    peak comes while it rocks, not at rest, where it needs |a_g|/g < tan α): the need passes μs
+    only for a few milliseconds around its peak, inside one step. The run must warn, once, inside
+    the 0.1 ms samples where the sympy forces exceed μs; with μs 0.1 % above the need, it must not.
+    A summary that says the statue needs more than its top face gives, with no warning, contradicts
+    itself: so it did until 2026-12-02 whenever the excess began and ended between two step ends
+    (the check was made there only); the stages of each step now see it."""
+    held = rk.Friction(static=0.8, kinetic=0.7)
+    motion = rk.Harmonic(amplitude=amplitude, frequency=1.5, cycles=3, form="sin")
+
+    def run(mu):
+        friction = None if mu is None else rk.Friction(static=mu, kinetic=mu)
+        statue = rk.Statue(width=0.4, height=1.6, mass=100.0, friction=friction)
+        return rk.simulate(rk.System(statue=statue, pedestal=rk.Pedestal(mass=100.0, friction=held)), motion,
+                           options=rk.Options(gravity=G, save_dt=1e-4))
+
+    need = run(None).summary()["required_top_friction"]
+    assert need > 0.2501
+    r = run(0.999 * need)
+    assert r.summary()["required_top_friction"] == pytest.approx(need, rel=1e-9)  # (μs,top only checks)
+    from rocking.solver import compiled as C
+
+    t_warn = _slip_warning_time(r)
+    i = _first_failing_sample(r, motion, C.S_TOP_SLIP)
+    assert r.regime[i] & 1 and r.t[i - 1] < t_warn <= r.t[i] + 1e-12
+    assert np.isnan(_slip_warning_time(run(1.001 * need)))
+
+
 @pytest.mark.parametrize("floor_mu", [0.8, 0.1])
 def test_the_lift_off_warnings_at_rest_or_sliding_come_when_the_floor_falls_faster_than_g(floor_mu):
     """A squat statue (1 × 1 m) on a pedestal (μs = 0.8 or 0.1), under a weak sine (0.35 m/s²)

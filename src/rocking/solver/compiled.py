@@ -933,7 +933,8 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                 _step(t, y, te - t, Ke, work, ye, p, sig, s, loc, gmin, watch, False)
                 top_ratio = max(top_ratio, gmin[N_GUARDS])  # stages up to the event only
                 for w in range(N_CHECKS):  # (as fractions of the step the dense output is of)
-                    gmin[N_GUARDS + 1 + w] *= x_first
+                    if gmin[N_GUARDS + 1 + w] <= 1.0:
+                        gmin[N_GUARDS + 1 + w] *= x_first
             at_rest = sig == 0 and s == 0
             if at_rest:
                 top_ratio = max(top_ratio, _rest_checks(p, y, loc, t, te, summ))
