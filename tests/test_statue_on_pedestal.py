@@ -617,6 +617,19 @@ def test_a_top_face_just_weaker_than_the_rocking_statue_needs_is_warned(amplitud
     assert np.isnan(_slip_warning_time(run(1.001 * need)))
 
 
+def test_a_frictionless_top_face_under_a_statue_that_rocks_from_the_start_is_flagged_at_once():
+    """μs,top = 0 given for the statue's base, under a cosine whose first value (3.5 m/s²) rocks
+    the statue at t = 0: there is no rest stretch to check, and the base needs |P_x| > 0 from
+    the first instant. The warning must say t = 0 exactly (it said the first step's end before
+    the stage checks; a stage check that skipped μs = 0, mutant 29dbac14, said so again)."""
+    statue = rk.Statue(width=0.4, height=1.6, mass=100.0, friction=rk.Friction(static=0.0, kinetic=0.0))
+    pedestal = rk.Pedestal(mass=100.0, friction=rk.Friction(static=0.8, kinetic=0.7))
+    r = rk.simulate(rk.System(statue=statue, pedestal=pedestal), rk.Harmonic(amplitude=3.5, frequency=1.5, cycles=1),
+                    options=OPTS)
+    assert r.summary()["first_rocking_time"] == 0.0
+    assert _slip_warning_time(r) == 0.0
+
+
 @pytest.mark.parametrize("floor_mu", [0.8, 0.1])
 def test_the_lift_off_warnings_at_rest_or_sliding_come_when_the_floor_falls_faster_than_g(floor_mu):
     """A squat statue (1 × 1 m) on a pedestal (μs = 0.8 or 0.1), under a weak sine (0.35 m/s²)
