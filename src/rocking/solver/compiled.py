@@ -92,7 +92,7 @@ N_DIAG = 7  # extra right-hand-side outputs: a_g, a_v, F, N, P_x, P_y, ok (not i
 # 1e-5 of what it would be at the tolerance. Longer steps take a step to the event instead.
 DENSE_EVENT_ERROR = 1e-5
 # The four checks of the model's assumptions behind the run's warnings, in the order of their
-# slots in ``gmin`` (after the guards and the top-face ratio) and of ``watch``: the statue would
+# slots in ``gmin`` (after the guards and the top-face ratio): the statue would
 # slip on the pedestal, the pedestal would uplift, the floor's normal force N ≤ 0, the statue's
 # base force P_y ≤ 0. Their summary entries hold the first instant each fails.
 N_CHECKS = 4
@@ -182,11 +182,32 @@ def _check_fails(p, s, a, udd, n_full, px, py, which):
 
 
 @njit(cache=True, inline="always")
-def _stages(t, y, h, K, work, p, sig, s, loc, gmin, watch, c, a_tab, n_stages):
+def _need(p, theta, px, py):
+    """|P_x|/P_y, the friction the statue's base needs; 0 where P_y ≤ 0 or |θ| > α (toppling:
+    no design quantity there)."""
+    return abs(px) / py if py > 0.0 and abs(theta) <= p[ALPHA] else 0.0
+
+
+@njit(cache=True, inline="always")
+def _watched(p, summ, which):
+    """Whether check ``which`` can still raise its warning: not raised yet, and not off (no top
+    friction given; no pedestal width and height)."""
+    if not math.isnan(summ[CHECK_SLOTS[which]]):
+        return False
+    if which == 0:
+        return p[MU_TOP] >= 0.0
+    if which == 1:
+        return pedestal_half_width(p) > 0.0
+    return True
+
+
+@njit(cache=True, inline="always")
+def _stages(t, y, h, K, work, p, sig, s, loc, gmin, summ, c, a_tab, n_stages):
     """Stages 1…n_stages−1 of an explicit Runge–Kutta step (tableau c, a_tab) into K, with the
     threshold guards and the top-face friction ratio tracked at every stage into ``gmin``, and,
-    for each check still watched (``watch``), the smallest fraction c of the step at whose stage
-    it fails (gmin[N_GUARDS + 1 + check]; +inf if none)."""
+    for each check whose warning can still come (_watched, read from the summary ``summ``), the
+    smallest fraction c of the step at whose stage it fails (gmin[N_GUARDS + 1 + check]; +inf if
+    none)."""
     for i in range(N_GUARDS):
         gmin[i] = np.inf
     gmin[N_GUARDS] = 0.0
@@ -214,38 +235,37 @@ def _stages(t, y, h, K, work, p, sig, s, loc, gmin, watch, c, a_tab, n_stages):
         track_threshold_guards(p, sig, s, work, a, av, udd, f, nn, gmin)
         # The friction the statue's base needs peaks between step ends: sample it at the stages
         # (while |θ| ≤ α: beyond, the statue is toppling and the ratio is no design quantity).
-        if py > 0.0 and abs(work[2]) <= p[ALPHA]:
-            gmin[N_GUARDS] = max(gmin[N_GUARDS], abs(px) / py)
+        gmin[N_GUARDS] = max(gmin[N_GUARDS], _need(p, work[2], px, py))
         # The warnings' first instants: a failure that starts and ends inside a step shows
         # here, and its smallest c bounds the search on the dense output (_first_check_failure).
         # (written out: the cheap tests of N and P_y first, and no loop in this innermost one)
         cs = c[stage]
-        if nn <= 0.0 and watch[2] and cs < gmin[N_GUARDS + 3]:
+        if nn <= 0.0 and cs < gmin[N_GUARDS + 3] and _watched(p, summ, 2):
             gmin[N_GUARDS + 3] = cs
-        if py <= 0.0 and watch[3] and cs < gmin[N_GUARDS + 4]:
+        if py <= 0.0 and cs < gmin[N_GUARDS + 4] and _watched(p, summ, 3):
             gmin[N_GUARDS + 4] = cs
-        if watch[0] and cs < gmin[N_GUARDS + 1] and _check_fails(p, s, a, udd, nn, px, py, 0):
+        if cs < gmin[N_GUARDS + 1] and _watched(p, summ, 0) and _check_fails(p, s, a, udd, nn, px, py, 0):
             gmin[N_GUARDS + 1] = cs
-        if watch[1] and cs < gmin[N_GUARDS + 2] and _check_fails(p, s, a, udd, nn, px, py, 1):
+        if cs < gmin[N_GUARDS + 2] and _watched(p, summ, 1) and _check_fails(p, s, a, udd, nn, px, py, 1):
             gmin[N_GUARDS + 2] = cs
 
 
 @njit(cache=True, _nrt=False)
-def _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin, watch, fsal):
+def _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin, summ, fsal):
     """One DOP853 step; K[0] = rhs(t, y) on entry, K[FSAL] = rhs(t + h, y_new) on exit if
     ``fsal`` (a step to an event skips it: the regime changes there). ``gmin`` receives the
     smallest values of the threshold guards at the interior stages."""
-    _stages(t, y, h, K, work, p, sig, s, loc, gmin, watch, dop853.C, dop853.A, dop853.N_STAGES)
+    _stages(t, y, h, K, work, p, sig, s, loc, gmin, summ, dop853.C, dop853.A, dop853.N_STAGES)
     dop853.advance(y, K, h, y_new)
     if fsal:
         rhs(t + h, y_new, p, sig, s, loc, K[dop853.FSAL])
 
 
 @njit(cache=True, _nrt=False)
-def _step5(t, y, h, K, work, y_new, p, sig, s, loc, gmin, watch):
+def _step5(t, y, h, K, work, y_new, p, sig, s, loc, gmin, summ):
     """One Dormand–Prince 5(4) step (FSAL row 6): for steps cut short by a sample of a record,
     where 12 stages would buy accuracy the short step already has."""
-    _stages(t, y, h, K, work, p, sig, s, loc, gmin, watch, dopri5.C, dopri5.A, 6)
+    _stages(t, y, h, K, work, p, sig, s, loc, gmin, summ, dopri5.C, dopri5.A, 6)
     dopri5.advance(y, K, h, y_new)
     rhs(t + h, y_new, p, sig, s, loc, K[FSAL5])
 
@@ -257,6 +277,17 @@ def _prepare_dense(t, y, y_new, h, K, work, F, p, sig, s, loc):
         dop853.extra_stage_input(y, K, h, j, work)
         rhs(t + dop853.C_EXTRA[j] * h, work, p, sig, s, loc, K[dop853.FSAL + 1 + j])
     dop853.prepare_dense(y, y_new, K, h, F)
+
+
+@njit(cache=True, _nrt=False)
+def _prepare_step_dense(t, y, y_new, h, K, work, F, p, sig, s, loc, low_order):
+    """The accepted step's dense output into F: the nested one of a 5(4) step, DOP853's 7th-order
+    one otherwise. Returns True (for the caller's flag that it is built)."""
+    if low_order:
+        dopri5.prepare_dense_nested(y, K, h, F)
+    else:
+        _prepare_dense(t, y, y_new, h, K, work, F, p, sig, s, loc)
+    return True
 
 
 @njit(cache=True)
@@ -408,6 +439,20 @@ def _first_check_failure(p, sig, s, y0, F, h, t0, x_hi, loc, work, which):
     return t0 + hi * h
 
 
+@njit(cache=True, inline="always")
+def _failure_bound(p, s, gmin, summ, which, at_rest, x_end, a, udd, n_full, px, py):
+    """Where in a step that ends at fraction x_end (the step's end, or an event) check ``which``
+    first failed: the whole step if it fails at the end (a, ü and the forces there given), else
+    the first stage that failed before x_end; +inf if neither, if its warning is already raised,
+    or, at rest, for the top slip and the uplift (_rest_checks finds those exactly)."""
+    if (which < 2 and at_rest) or not _watched(p, summ, which):
+        return math.inf
+    if _check_fails(p, s, a, udd, n_full, px, py, which):
+        return x_end
+    x = gmin[N_GUARDS + 1 + which]
+    return x if x <= x_end else math.inf
+
+
 @njit(cache=True, _nrt=False)
 def _ratio_at(p, sig, s, y0, F, h, x, loc, t0, work):
     """|P_x|/P_y, the friction the statue's base needs, on the dense output at fraction x of the
@@ -415,7 +460,7 @@ def _ratio_at(p, sig, s, y0, F, h, x, loc, t0, work):
     dop853.dense(y0, F, x, work)
     a, av = _ground(loc, t0 + x * h)
     _, _, _, _, _, px, py, _, _ = evaluate_all(p, sig, s, work[1], work[2], work[3], a, av)
-    return abs(px) / py if py > 0.0 and abs(work[2]) <= p[ALPHA] else 0.0
+    return _need(p, work[2], px, py)
 
 
 @njit(cache=True, _nrt=False)
@@ -502,7 +547,7 @@ def _rest_point(p, y, loc, t):
     (the floor's normal force and the statue's base force, N: the bodies would jump if ≥ 0)."""
     a, av = _ground(loc, t)
     _, _, _, _, n_full, px, py, _, _ = evaluate_all(p, 0, 0, y[1], y[2], y[3], a, av)
-    ratio = abs(px) / py if py > 0.0 and abs(y[2]) <= p[ALPHA] else 0.0
+    ratio = _need(p, y[2], px, py)
     slip = abs(px) - p[MU_TOP] * py if p[MU_TOP] >= 0.0 else -math.inf
     uplift = -math.inf
     b1 = pedestal_half_width(p)
@@ -639,7 +684,6 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
         np.empty(N_GUARDS),  # near
         np.ones(N_GUARDS, dtype=np.bool_),  # armed
         np.empty(2 * N_GUARDS),  # gband: scratch of rest_band
-        np.ones(N_CHECKS, dtype=np.bool_),  # watch: the checks whose warning is not set yet
     )
     pieces = _piece_table(sig_h, sig_v, breakpoints, t0, t_end)
     n_out, n_ev = _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt, save, n_grid, cap,
@@ -652,14 +696,11 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
 # array passed to, or inlined into, a function — a fifth to two fifths of the run time (perf).
 @njit(cache=True, _nrt=False)
 def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt, save, n_grid, cap, max_events,
-               t_settle, stop_flag, summ, t_out, y_out, r_out, events, y, y_new, work, ye, K, Ke, F, g0, g1, gbuf, gmin, near, armed, gband,
-               watch):
+               t_settle, stop_flag, summ, t_out, y_out, r_out, events, y, y_new, work, ye, K, Ke, F, g0, g1, gbuf, gmin, near, armed, gband):
     """The event-driven loop of :func:`integrate` on preallocated arrays; returns the numbers of
     saved samples and of events."""
     for i in range(N_SUMMARY):
         summ[i] = math.nan
-    watch[0] = p[MU_TOP] >= 0.0
-    watch[1] = pedestal_half_width(p) > 0.0
     # An interior minimum of a threshold guard is searched for a sign change only when it comes
     # this close to zero (3 % of the guard's natural scale): the cost stays with grazing steps.
     for i in range(N_GUARDS):
@@ -792,12 +833,12 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
         # 12 stages for the same accuracy: take a 5th-order step there.
         low_order = h < h_wanted
         if low_order:
-            _step5(t, y, h, K, work, y_new, p, sig, s, loc, gmin, watch)
+            _step5(t, y, h, K, work, y_new, p, sig, s, loc, gmin, summ)
             err = dopri5.error_norm(y, y_new, K, h, rtol, atol, 4)
             exponent = 0.2
             fs = FSAL5
         else:
-            _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin, watch, True)
+            _step(t, y, h, K, work, y_new, p, sig, s, loc, gmin, summ, True)
             err = dop853.error_norm(y, y_new, K, h, rtol, atol, 4)
             exponent = dop853.ERROR_EXPONENT
             fs = dop853.FSAL
@@ -829,10 +870,7 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
             need_dense = True
         x_turn = -1.0  # where θ̇ changes sign in the step (a peak of |θ|), if it does
         if need_dense:
-            if low_order:
-                dopri5.prepare_dense_nested(y, K, h, F)
-            else:
-                _prepare_dense(t, y, y_new, h, K, work, F, p, sig, s, loc)
+            _prepare_step_dense(t, y, y_new, h, K, work, F, p, sig, s, loc, low_order)
             if s != 0 and (y[3] > 0.0) != (y_new[3] > 0.0):
                 x_turn = _theta_dot_root(y, F, y[3], y_new[3], 1.0)
         first = -1
@@ -921,34 +959,21 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                 # A new largest need at a stage: if it lies above both ends, the peak is inside
                 # the step, between the stages; find it on the dense output (rare: only a step
                 # that raises the run's largest need so far).
-                r0 = abs(K[0, 10]) / K[0, 11] if K[0, 11] > 0.0 and abs(y[2]) <= p[ALPHA] else 0.0
-                r1 = abs(K[fs, 10]) / K[fs, 11] if K[fs, 11] > 0.0 and abs(y_new[2]) <= p[ALPHA] else 0.0
-                if gmin[N_GUARDS] > max(r0, r1):
+                if gmin[N_GUARDS] > max(_need(p, y[2], K[0, 10], K[0, 11]), _need(p, y_new[2], K[fs, 10], K[fs, 11])):
                     if not need_dense:
-                        need_dense = True
-                        if low_order:
-                            dopri5.prepare_dense_nested(y, K, h, F)
-                        else:
-                            _prepare_dense(t, y, y_new, h, K, work, F, p, sig, s, loc)
+                        need_dense = _prepare_step_dense(t, y, y_new, h, K, work, F, p, sig, s, loc, low_order)
                     top_ratio = max(top_ratio, _ratio_peak(p, sig, s, y, F, h, 1.0, loc, t, work))
             top_ratio = max(top_ratio, gmin[N_GUARDS])
             at_rest = sig == 0 and s == 0
             if at_rest:
                 top_ratio = max(top_ratio, _rest_checks(p, y, loc, t, t1, summ))
             for w in range(N_CHECKS):
-                # (at rest the top slip and the uplift are found by _rest_checks, exactly)
-                if watch[w] and math.isnan(summ[CHECK_SLOTS[w]]) and (w >= 2 or not at_rest):
-                    x_hi = gmin[N_GUARDS + 1 + w]
-                    if _check_fails(p, s, K[fs, 6], K[fs, 1], K[fs, 9], K[fs, 10], K[fs, 11], w):
-                        x_hi = 1.0
-                    if x_hi <= 1.0:
-                        if not need_dense:
-                            need_dense = True
-                            if low_order:
-                                dopri5.prepare_dense_nested(y, K, h, F)
-                            else:
-                                _prepare_dense(t, y, y_new, h, K, work, F, p, sig, s, loc)
-                        summ[CHECK_SLOTS[w]] = _first_check_failure(p, sig, s, y, F, h, t, x_hi, loc, work, w)
+                x_hi = _failure_bound(p, s, gmin, summ, w, at_rest, 1.0, K[fs, 6], K[fs, 1], K[fs, 9], K[fs, 10],
+                                      K[fs, 11])
+                if x_hi <= 1.0:
+                    if not need_dense:
+                        need_dense = _prepare_step_dense(t, y, y_new, h, K, work, F, p, sig, s, loc, low_order)
+                    summ[CHECK_SLOTS[w]] = _first_check_failure(p, sig, s, y, F, h, t, x_hi, loc, work, w)
             for j in range(N_STATE):
                 y[j] = y_new[j]
             t = t1
@@ -980,13 +1005,12 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                 dop853.dense(y, F, x_first, ye)
                 a, av = _ground(loc, te)
                 _, _, _, _, _, px, py, _, _ = evaluate_all(p, sig, s, ye[1], ye[2], ye[3], a, av)
-                if py > 0.0 and abs(ye[2]) <= p[ALPHA]:
-                    top_ratio = max(top_ratio, abs(px) / py)
+                top_ratio = max(top_ratio, _need(p, ye[2], px, py))
             else:
                 # Otherwise a step to the event (8th order), not the interpolant.
                 for j in range(K.shape[1]):
                     Ke[0, j] = K[0, j]
-                _step(t, y, te - t, Ke, work, ye, p, sig, s, loc, gmin, watch, False)
+                _step(t, y, te - t, Ke, work, ye, p, sig, s, loc, gmin, summ, False)
                 top_ratio = max(top_ratio, gmin[N_GUARDS])  # stages up to the event only
                 for w in range(N_CHECKS):  # (as fractions of the step the dense output is of)
                     if gmin[N_GUARDS + 1 + w] <= 1.0:
@@ -1004,12 +1028,9 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                 a, av = _ground(loc, te)
                 udd_e, _, _, _, n_e, px_e, py_e, _, _ = evaluate_all(p, sig, s, ye[1], ye[2], ye[3], a, av)
                 for w in range(N_CHECKS):
-                    if watch[w] and math.isnan(summ[CHECK_SLOTS[w]]) and (w >= 2 or not at_rest):
-                        x_hi = gmin[N_GUARDS + 1 + w]
-                        if _check_fails(p, s, a, udd_e, n_e, px_e, py_e, w):
-                            x_hi = min(x_hi, x_first)
-                        if x_hi <= x_first:
-                            summ[CHECK_SLOTS[w]] = _first_check_failure(p, sig, s, y, F, h, t, x_hi, loc, work, w)
+                    x_hi = _failure_bound(p, s, gmin, summ, w, at_rest, x_first, a, udd_e, n_e, px_e, py_e)
+                    if x_hi <= x_first:
+                        summ[CHECK_SLOTS[w]] = _first_check_failure(p, sig, s, y, F, h, t, x_hi, loc, work, w)
             for j in range(N_STATE):
                 y[j] = ye[j]
             t = te
@@ -1084,30 +1105,15 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
         e = mechanical_energy(p, s, y[1], y[2], y[3])
         energy_scale = max(energy_scale, abs(e), abs(y[4]), abs(y[5]))
         balance = max(balance, abs(e - e0 - y[4] + y[5] + d_impact))
-        if py > 0.0:
-            if abs(y[2]) <= p[ALPHA]:
-                top_ratio = max(top_ratio, abs(px) / py)
-        if p[MU_TOP] >= 0.0 and abs(px) > p[MU_TOP] * py and math.isnan(summ[S_TOP_SLIP]):
-            # in every regime: at rest (where the stretch checks above also find the first
-            # instant) and while the pedestal slides under a resting statue as while it rocks
-            summ[S_TOP_SLIP] = t
-        b1 = pedestal_half_width(p)
-        if b1 > 0.0 and math.isnan(summ[S_UPLIFT]):
-            # in every regime too: a tall, narrow pedestal tips under a resting statue as well
-            xn = pressure_centre(p, s, a, udd, px, py, n_full)
-            if math.isfinite(xn) and abs(xn) > b1:
-                summ[S_UPLIFT] = t
-        # in every regime (until 2026-12-02 only while the statue rocked: a vertical floor
-        # acceleration below −g under a sliding or resting stack went unflagged)
-        if n_full <= 0.0 and math.isnan(summ[S_N_NONPOSITIVE]):
-            summ[S_N_NONPOSITIVE] = t
-        if py <= 0.0 and math.isnan(summ[S_PY_NONPOSITIVE]):
-            summ[S_PY_NONPOSITIVE] = t
-        # the checks the next step's stages track
-        watch[0] = p[MU_TOP] >= 0.0 and math.isnan(summ[S_TOP_SLIP])
-        watch[1] = b1 > 0.0 and math.isnan(summ[S_UPLIFT])
-        watch[2] = math.isnan(summ[S_N_NONPOSITIVE])
-        watch[3] = math.isnan(summ[S_PY_NONPOSITIVE])
+        top_ratio = max(top_ratio, _need(p, y[2], px, py))
+        # The four checks at the point itself, in every regime (until 2026-12-02 the top slip
+        # and the uplift only while the statue rocked, N and P_y too: a tall, narrow pedestal
+        # tipping under a resting statue, or a floor falling faster than g under a sliding one,
+        # went unflagged). At rest the stretch checks above find their first instants, while
+        # moving the stages and the dense output do; this is the event's new state.
+        for w in range(N_CHECKS):
+            if math.isnan(summ[CHECK_SLOTS[w]]) and _check_fails(p, s, a, udd, n_full, px, py, w):
+                summ[CHECK_SLOTS[w]] = t
 
     if status == STATUS_COMPLETED and (sig != 0 or s != 0):
         status = STATUS_STILL_MOVING  # the time ran out, not the motion
