@@ -62,7 +62,7 @@ from ..models.modes import (
     select_regime,
     track_threshold_guards,
 )
-from ..models.parameters import ALPHA, B, CAN_SLIDE, G, H, M, MU_S, MU_TOP
+from ..models.parameters import ALPHA, B, CAN_SLIDE, G, H, M, M2, MU_S, MU_TOP
 
 # Runs the Python-level signal handlers (C API; needs the GIL, which compiled code holds). In a
 # thread other than the main one it does nothing. See rocking.solver.signals for why the
@@ -164,21 +164,38 @@ def rhs(t, y, p, sig, s, loc, out):
 
 
 @njit(cache=True, inline="always")
-def _check_fails(p, s, a, udd, n_full, px, py, which):
-    """Whether check ``which`` (see N_CHECKS) fails at a state whose floor acceleration a, ü
-    and forces (N, P_x, P_y; N) are known: |P_x| > μs,top·P_y, |x_N| > b₁ (derivation §3.5),
-    N ≤ 0 or P_y ≤ 0."""
+def _check_margin(p, s, a, udd, n_full, px, py, which):
+    """How far check ``which`` (see N_CHECKS) is from failing at a state whose floor
+    acceleration a, ü and forces (N, P_x, P_y) are known, in the check's own units:
+    μs,top·P_y − |P_x| (N), b₁ − |x_N| (m; derivation §3.5), N and P_y (N). +inf where the
+    check cannot fail: no top friction given, no pedestal width and height, x_N undefined."""
     if which == 0:
-        return p[MU_TOP] >= 0.0 and abs(px) > p[MU_TOP] * py
+        return p[MU_TOP] * py - abs(px) if p[MU_TOP] >= 0.0 else math.inf
     if which == 1:
         b1 = pedestal_half_width(p)
         if b1 <= 0.0:
-            return False
+            return math.inf
         xn = pressure_centre(p, s, a, udd, px, py, n_full)
-        return math.isfinite(xn) and abs(xn) > b1
+        return b1 - abs(xn) if math.isfinite(xn) else math.inf
     if which == 2:
-        return n_full <= 0.0
-    return py <= 0.0
+        return n_full
+    return py
+
+
+@njit(cache=True, inline="always")
+def _failed(margin, which):
+    """Whether a check whose margin is ``margin`` fails: the statue slips if |P_x| > μs,top·P_y,
+    the pedestal uplifts if |x_N| > b₁, the bodies jump if N ≤ 0 or P_y ≤ 0."""
+    return margin < 0.0 if which < 2 else margin <= 0.0
+
+
+@njit(cache=True, inline="always")
+def _margin_scale(p, which):
+    """The size against which a check's margin is near zero: the statue's weight, b₁, or the
+    weight of both bodies."""
+    if which == 1:
+        return pedestal_half_width(p)
+    return (p[M] if which == 2 else p[M2]) * p[G]
 
 
 @njit(cache=True, inline="always")
@@ -204,15 +221,15 @@ def _watched(p, summ, which):
 @njit(cache=True, inline="always")
 def _stages(t, y, h, K, work, p, sig, s, loc, gmin, summ, c, a_tab, n_stages):
     """Stages 1…n_stages−1 of an explicit Runge–Kutta step (tableau c, a_tab) into K, with the
-    threshold guards and the top-face friction ratio tracked at every stage into ``gmin``, and,
-    for each check whose warning can still come (_watched, read from the summary ``summ``), the
-    smallest fraction c of the step at whose stage it fails (gmin[N_GUARDS + 1 + check]; +inf if
-    none)."""
+    threshold guards and the top-face friction ratio tracked at every stage into ``gmin``, and
+    each check's smallest margin at a stage (gmin[N_GUARDS + 1 + check]; +inf if none) with
+    the fraction c of the step at that stage (gmin[N_GUARDS + 1 + N_CHECKS + check])."""
     for i in range(N_GUARDS):
         gmin[i] = np.inf
     gmin[N_GUARDS] = 0.0
     for w in range(N_CHECKS):
         gmin[N_GUARDS + 1 + w] = np.inf
+        gmin[N_GUARDS + 1 + N_CHECKS + w] = 0.0
     n = N_STATE  # a constant: the stage sums unroll
     for stage in range(1, n_stages):
         for j in range(n):
@@ -236,18 +253,21 @@ def _stages(t, y, h, K, work, p, sig, s, loc, gmin, summ, c, a_tab, n_stages):
         # The friction the statue's base needs peaks between step ends: sample it at the stages
         # (while |θ| ≤ α: beyond, the statue is toppling and the ratio is no design quantity).
         gmin[N_GUARDS] = max(gmin[N_GUARDS], _need(p, work[2], px, py))
-        # The warnings' first instants: a failure that starts and ends inside a step shows
-        # here, and its smallest c bounds the search on the dense output (_first_check_failure).
-        # (written out: the cheap tests of N and P_y first, and no loop in this innermost one)
+        # The warnings' first instants: each check's smallest margin at the stages, and where,
+        # so that a failure, or a near miss, that starts and ends inside a step shows here
+        # (_failure_bound). Written out: no loop in this innermost one.
         cs = c[stage]
-        if nn <= 0.0 and cs < gmin[N_GUARDS + 3] and _watched(p, summ, 2):
-            gmin[N_GUARDS + 3] = cs
-        if py <= 0.0 and cs < gmin[N_GUARDS + 4] and _watched(p, summ, 3):
-            gmin[N_GUARDS + 4] = cs
-        if cs < gmin[N_GUARDS + 1] and _watched(p, summ, 0) and _check_fails(p, s, a, udd, nn, px, py, 0):
-            gmin[N_GUARDS + 1] = cs
-        if cs < gmin[N_GUARDS + 2] and _watched(p, summ, 1) and _check_fails(p, s, a, udd, nn, px, py, 1):
-            gmin[N_GUARDS + 2] = cs
+        if nn < gmin[N_GUARDS + 3]:
+            gmin[N_GUARDS + 3], gmin[N_GUARDS + 3 + N_CHECKS] = nn, cs
+        if py < gmin[N_GUARDS + 4]:
+            gmin[N_GUARDS + 4], gmin[N_GUARDS + 4 + N_CHECKS] = py, cs
+        m = _check_margin(p, s, a, udd, nn, px, py, 0)
+        if m < gmin[N_GUARDS + 1]:
+            gmin[N_GUARDS + 1], gmin[N_GUARDS + 1 + N_CHECKS] = m, cs
+        if _watched(p, summ, 1):  # (the pressure centre only while its warning can come)
+            m = _check_margin(p, s, a, udd, nn, px, py, 1)
+            if m < gmin[N_GUARDS + 2]:
+                gmin[N_GUARDS + 2], gmin[N_GUARDS + 2 + N_CHECKS] = m, cs
 
 
 @njit(cache=True, _nrt=False)
@@ -400,23 +420,81 @@ def _theta_dot_root(y0, F, f_lo, f_hi, x_hi):
     return dop853.dense_sum_root(y0, F, 3, 1, 1, f_lo, f_hi, x_hi)
 
 
+#: _value_at's code for the friction the statue's base needs (after the checks' codes).
+NEED = N_CHECKS
+
+
 @njit(cache=True, _nrt=False)
-def _check_at(p, sig, s, y0, F, h, x, loc, t0, work, which):
-    """Whether check ``which`` fails on the dense output of the step, at fraction x."""
+def _value_at(p, sig, s, y0, F, h, x, loc, t0, work, which):
+    """On the dense output of the step at fraction x: the margin of check ``which``
+    (_check_margin), or for ``which`` = NEED the friction the statue's base needs, negated
+    (_lowest looks for the lowest value of either)."""
     dop853.dense(y0, F, x, work)
     a, av = _ground(loc, t0 + x * h)
     udd, _, _, _, n_full, px, py, _, _ = evaluate_all(p, sig, s, work[1], work[2], work[3], a, av)
-    return _check_fails(p, s, a, udd, n_full, px, py, which)
+    if which == NEED:
+        return -_need(p, work[2], px, py)
+    return _check_margin(p, s, a, udd, n_full, px, py, which)
+
+
+@njit(cache=True, _nrt=False)
+def _check_at(p, sig, s, y0, F, h, x, loc, t0, work, which):
+    """Whether check ``which`` fails on the dense output of the step, at fraction x."""
+    return _failed(_value_at(p, sig, s, y0, F, h, x, loc, t0, work, which), which)
+
+
+@njit(cache=True, _nrt=False)
+def _lowest(p, sig, s, y0, F, h, x_end, x_hint, loc, t0, work, which):
+    """The lowest value of _value_at over [0, x_end] of the step, and where (a fraction): the
+    lowest of 17 samples and of x_hint (ignored outside (0, x_end)), then a golden-section
+    search between its neighbours to 1e-6 of the step (the values are flat to ~1e-12 of
+    themselves there). For the peak of the friction the statue's base needs (the stages alone,
+    up to a quarter of a step apart, read it low: 0.27499 for 0.27501 on a statue rocking under
+    a sine, until 2026-12-02), and for a check's margin the stages saw dip near zero between the
+    step's ends (a dip below zero narrower than their spacing passed unseen until 2026-12-02:
+    P_y ≤ 0 for 3.5 ms, to −0.33 N, under a 100 kg statue)."""
+    best, xb = math.inf, 0.0
+    for k in range(17):
+        x = x_end * k / 16.0
+        v = _value_at(p, sig, s, y0, F, h, x, loc, t0, work, which)
+        if v < best:
+            best, xb = v, x
+    if 0.0 < x_hint < x_end:
+        v = _value_at(p, sig, s, y0, F, h, x_hint, loc, t0, work, which)
+        if v < best:
+            best, xb = v, x_hint
+    lo, hi = max(0.0, xb - x_end / 16.0), min(x_end, xb + x_end / 16.0)
+    g = 0.6180339887498949
+    x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
+    f1 = _value_at(p, sig, s, y0, F, h, x1, loc, t0, work, which)
+    f2 = _value_at(p, sig, s, y0, F, h, x2, loc, t0, work, which)
+    for _ in range(60):
+        if hi - lo < 1e-6 * x_end:
+            break
+        if f1 < f2:
+            hi, x2, f2 = x2, x1, f1
+            x1 = hi - g * (hi - lo)
+            f1 = _value_at(p, sig, s, y0, F, h, x1, loc, t0, work, which)
+        else:
+            lo, x1, f1 = x1, x2, f2
+            x2 = lo + g * (hi - lo)
+            f2 = _value_at(p, sig, s, y0, F, h, x2, loc, t0, work, which)
+    if f1 < best:
+        best, xb = f1, x1
+    if f2 < best:
+        best, xb = f2, x2
+    return best, xb
 
 
 @njit(cache=True, _nrt=False)
 def _first_check_failure(p, sig, s, y0, F, h, t0, x_hi, loc, work, which):
     """The first instant (s) in the step from t0 at which check ``which`` fails, given it holds
-    at t0 and failed at a stage or the end, at fraction x_hi of the step: on the dense output,
-    the first of 16 samples up to x_hi that fails, then the crossing before it bisected to the
-    last bit of max(t, 1 s). NaN when the dense output holds at x_hi (the stage's failure was within the step's
-    error; the next point checked decides). Until 2026-12-02 a warning took the time of the
-    first step end at which its check failed: up to a step late (ms while rocking)."""
+    at t0 and fails at fraction x_hi of the step (its end, or where it came nearest to failing:
+    _warning_time): on the dense output, the first of 16 samples up to x_hi that fails, then the
+    crossing before it bisected to the last bit of max(t, 1 s). NaN when the dense output holds
+    at x_hi (a failure within the step's error; the next point checked decides). Until
+    2026-12-02 a warning took the time of the first step end at which its check failed: up to a
+    step late (ms while rocking)."""
     if not _check_at(p, sig, s, y0, F, h, x_hi, loc, t0, work, which):
         return math.nan
     if _check_at(p, sig, s, y0, F, h, 0.0, loc, t0, work, which):
@@ -439,60 +517,42 @@ def _first_check_failure(p, sig, s, y0, F, h, t0, x_hi, loc, work, which):
     return t0 + hi * h
 
 
+#: A check's margin counts as near zero below this fraction of its scale (_margin_scale): a stage
+#: margin that low, and lower than at both ends of the step, has the dense output searched for
+#: a failure between the stages (_lowest). Steps whose stages stay farther from failing cost
+#: nothing more.
+NEAR_MISS = 0.02
+#: _failure_bound's answer for such a near miss.
+SEARCH_DIP = -1.0
+
+
 @njit(cache=True, inline="always")
-def _failure_bound(p, s, gmin, summ, which, at_rest, x_end, a, udd, n_full, px, py):
+def _failure_bound(p, s, gmin, summ, which, at_rest, x_end, m_start, a, udd, n_full, px, py):
     """Where in a step that ends at fraction x_end (the step's end, or an event) check ``which``
-    first failed: the whole step if it fails at the end (a, ü and the forces there given), else
-    the first stage that failed before x_end; +inf if neither, if its warning is already raised,
-    or, at rest, for the top slip and the uplift (_rest_checks finds those exactly)."""
+    first failed: x_end if it fails at the end (a, ü and the forces there given); SEARCH_DIP
+    if a stage before x_end failed it, or came near zero (NEAR_MISS) lower than both ends
+    (m_start: the margin at the start); +inf if neither, if its warning is already raised, or,
+    at rest, for the top slip and the uplift (_rest_checks finds those exactly)."""
     if (which < 2 and at_rest) or not _watched(p, summ, which):
         return math.inf
-    if _check_fails(p, s, a, udd, n_full, px, py, which):
+    m_end = _check_margin(p, s, a, udd, n_full, px, py, which)
+    if _failed(m_end, which):
         return x_end
-    x = gmin[N_GUARDS + 1 + which]
-    return x if x <= x_end else math.inf
+    m = gmin[N_GUARDS + 1 + which]
+    if m < NEAR_MISS * _margin_scale(p, which) and m < m_start and m < m_end:
+        return SEARCH_DIP
+    return math.inf
 
 
 @njit(cache=True, _nrt=False)
-def _ratio_at(p, sig, s, y0, F, h, x, loc, t0, work):
-    """|P_x|/P_y, the friction the statue's base needs, on the dense output at fraction x of the
-    step (0 where P_y ≤ 0 or |θ| > α, as everywhere)."""
-    dop853.dense(y0, F, x, work)
-    a, av = _ground(loc, t0 + x * h)
-    _, _, _, _, _, px, py, _, _ = evaluate_all(p, sig, s, work[1], work[2], work[3], a, av)
-    return _need(p, work[2], px, py)
-
-
-@njit(cache=True, _nrt=False)
-def _ratio_peak(p, sig, s, y0, F, h, x_hi, loc, t0, work):
-    """The largest |P_x|/P_y over [0, x_hi] of the step on its dense output: the best of 17
-    samples, then a golden-section search between its neighbours, to 1e-6 of the step (the ratio
-    is flat to ~1e-12 of itself there). The stages alone, up to a quarter of a step apart, read
-    a peak between them low: 0.27499 for 0.27501 (7e-5) on a statue rocking under a sine, until
-    2026-12-02."""
-    best, xb = -1.0, 0.0
-    for k in range(17):
-        x = x_hi * k / 16.0
-        r = _ratio_at(p, sig, s, y0, F, h, x, loc, t0, work)
-        if r > best:
-            best, xb = r, x
-    lo, hi = max(0.0, xb - x_hi / 16.0), min(x_hi, xb + x_hi / 16.0)
-    g = 0.6180339887498949
-    x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
-    f1 = _ratio_at(p, sig, s, y0, F, h, x1, loc, t0, work)
-    f2 = _ratio_at(p, sig, s, y0, F, h, x2, loc, t0, work)
-    for _ in range(60):
-        if hi - lo < 1e-6 * x_hi:
-            break
-        if f1 > f2:
-            hi, x2, f2 = x2, x1, f1
-            x1 = hi - g * (hi - lo)
-            f1 = _ratio_at(p, sig, s, y0, F, h, x1, loc, t0, work)
-        else:
-            lo, x1, f1 = x1, x2, f2
-            x2 = lo + g * (hi - lo)
-            f2 = _ratio_at(p, sig, s, y0, F, h, x2, loc, t0, work)
-    return max(best, f1, f2)
+def _warning_time(p, sig, s, y0, F, h, t0, x_end, x_hi, gmin, loc, work, which):
+    """The first instant (s) at which check ``which`` fails in the step from t0, up to fraction
+    x_end, given _failure_bound's answer x_hi (the end, or SEARCH_DIP); NaN if it holds there."""
+    if x_hi == SEARCH_DIP:
+        v, x_hi = _lowest(p, sig, s, y0, F, h, x_end, gmin[N_GUARDS + 1 + N_CHECKS + which], loc, t0, work, which)
+        if not _failed(v, which):
+            return math.nan
+    return _first_check_failure(p, sig, s, y0, F, h, t0, x_hi, loc, work, which)
 
 
 @njit(cache=True, inline="always")
@@ -680,7 +740,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
         np.empty(N_GUARDS),  # g0: guards at the step start
         np.empty(N_GUARDS),  # g1: guards at the step end
         np.empty(N_GUARDS),  # gbuf
-        np.empty(N_GUARDS + 1 + N_CHECKS),  # gmin: + the largest top-face ratio, the checks' first failures
+        np.empty(N_GUARDS + 1 + 2 * N_CHECKS),  # gmin: + the largest top-face ratio, the checks' margins and where
         np.empty(N_GUARDS),  # near
         np.ones(N_GUARDS, dtype=np.bool_),  # armed
         np.empty(2 * N_GUARDS),  # gband: scratch of rest_band
@@ -962,18 +1022,19 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                 if gmin[N_GUARDS] > max(_need(p, y[2], K[0, 10], K[0, 11]), _need(p, y_new[2], K[fs, 10], K[fs, 11])):
                     if not need_dense:
                         need_dense = _prepare_step_dense(t, y, y_new, h, K, work, F, p, sig, s, loc, low_order)
-                    top_ratio = max(top_ratio, _ratio_peak(p, sig, s, y, F, h, 1.0, loc, t, work))
+                    top_ratio = max(top_ratio, -_lowest(p, sig, s, y, F, h, 1.0, -1.0, loc, t, work, NEED)[0])
             top_ratio = max(top_ratio, gmin[N_GUARDS])
             at_rest = sig == 0 and s == 0
             if at_rest:
                 top_ratio = max(top_ratio, _rest_checks(p, y, loc, t, t1, summ))
             for w in range(N_CHECKS):
-                x_hi = _failure_bound(p, s, gmin, summ, w, at_rest, 1.0, K[fs, 6], K[fs, 1], K[fs, 9], K[fs, 10],
-                                      K[fs, 11])
+                m_start = _check_margin(p, s, K[0, 6], K[0, 1], K[0, 9], K[0, 10], K[0, 11], w)
+                x_hi = _failure_bound(p, s, gmin, summ, w, at_rest, 1.0, m_start, K[fs, 6], K[fs, 1], K[fs, 9],
+                                      K[fs, 10], K[fs, 11])
                 if x_hi <= 1.0:
                     if not need_dense:
                         need_dense = _prepare_step_dense(t, y, y_new, h, K, work, F, p, sig, s, loc, low_order)
-                    summ[CHECK_SLOTS[w]] = _first_check_failure(p, sig, s, y, F, h, t, x_hi, loc, work, w)
+                    summ[CHECK_SLOTS[w]] = _warning_time(p, sig, s, y, F, h, t, 1.0, x_hi, gmin, loc, work, w)
             for j in range(N_STATE):
                 y[j] = y_new[j]
             t = t1
@@ -1013,24 +1074,25 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                 _step(t, y, te - t, Ke, work, ye, p, sig, s, loc, gmin, summ, False)
                 top_ratio = max(top_ratio, gmin[N_GUARDS])  # stages up to the event only
                 for w in range(N_CHECKS):  # (as fractions of the step the dense output is of)
-                    if gmin[N_GUARDS + 1 + w] <= 1.0:
-                        gmin[N_GUARDS + 1 + w] *= x_first
+                    gmin[N_GUARDS + 1 + N_CHECKS + w] *= x_first
             at_rest = sig == 0 and s == 0
             if at_rest:
                 top_ratio = max(top_ratio, _rest_checks(p, y, loc, t, te, summ))
             elif x_first > 0.0 and gmin[N_GUARDS] > top_ratio:
                 # (the stages of the step, or of the step to the event: a peak up to the event
                 # may lie between them, as in an accepted step above)
-                top_ratio = max(top_ratio, _ratio_peak(p, sig, s, y, F, h, x_first, loc, t, work))
+                top_ratio = max(top_ratio, -_lowest(p, sig, s, y, F, h, x_first, -1.0, loc, t, work, NEED)[0])
             if x_first > 0.0:
                 # The warnings' failures up to the event (F holds the step's dense output: the
                 # event was located on it), the state just before the event included.
                 a, av = _ground(loc, te)
                 udd_e, _, _, _, n_e, px_e, py_e, _, _ = evaluate_all(p, sig, s, ye[1], ye[2], ye[3], a, av)
                 for w in range(N_CHECKS):
-                    x_hi = _failure_bound(p, s, gmin, summ, w, at_rest, x_first, a, udd_e, n_e, px_e, py_e)
+                    m_start = _check_margin(p, s, K[0, 6], K[0, 1], K[0, 9], K[0, 10], K[0, 11], w)
+                    x_hi = _failure_bound(p, s, gmin, summ, w, at_rest, x_first, m_start, a, udd_e, n_e, px_e, py_e)
                     if x_hi <= x_first:
-                        summ[CHECK_SLOTS[w]] = _first_check_failure(p, sig, s, y, F, h, t, x_hi, loc, work, w)
+                        summ[CHECK_SLOTS[w]] = _warning_time(p, sig, s, y, F, h, t, x_first, x_hi, gmin, loc, work,
+                                                             w)
             for j in range(N_STATE):
                 y[j] = ye[j]
             t = te
@@ -1112,7 +1174,7 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
         # went unflagged). At rest the stretch checks above find their first instants, while
         # moving the stages and the dense output do; this is the event's new state.
         for w in range(N_CHECKS):
-            if math.isnan(summ[CHECK_SLOTS[w]]) and _check_fails(p, s, a, udd, n_full, px, py, w):
+            if math.isnan(summ[CHECK_SLOTS[w]]) and _failed(_check_margin(p, s, a, udd, n_full, px, py, w), w):
                 summ[CHECK_SLOTS[w]] = t
 
     if status == STATUS_COMPLETED and (sig != 0 or s != 0):
