@@ -527,20 +527,22 @@ SEARCH_DIP = -1.0
 
 
 @njit(cache=True, inline="always")
-def _failure_bound(p, s, gmin, summ, which, at_rest, x_end, m_start, a, udd, n_full, px, py):
+def _failure_bound(p, s, gmin, summ, which, at_rest, x_end, K, a, udd, n_full, px, py):
     """Where in a step that ends at fraction x_end (the step's end, or an event) check ``which``
     first failed: x_end if it fails at the end (a, ü and the forces there given); SEARCH_DIP
-    if a stage before x_end failed it, or came near zero (NEAR_MISS) lower than both ends
-    (m_start: the margin at the start); +inf if neither, if its warning is already raised, or,
-    at rest, for the top slip and the uplift (_rest_checks finds those exactly)."""
+    if a stage before x_end failed it, or came near zero (NEAR_MISS) lower than both ends (the
+    start's from the step's first row of K, only then); +inf if neither, if its warning is
+    already raised, or, at rest, for the top slip and the uplift (_rest_checks finds those
+    exactly)."""
     if (which < 2 and at_rest) or not _watched(p, summ, which):
         return math.inf
     m_end = _check_margin(p, s, a, udd, n_full, px, py, which)
     if _failed(m_end, which):
         return x_end
     m = gmin[N_GUARDS + 1 + which]
-    if m < NEAR_MISS * _margin_scale(p, which) and m < m_start and m < m_end:
-        return SEARCH_DIP
+    if m < NEAR_MISS * _margin_scale(p, which) and m < m_end:
+        if m < _check_margin(p, s, K[0, 6], K[0, 1], K[0, 9], K[0, 10], K[0, 11], which):
+            return SEARCH_DIP
     return math.inf
 
 
@@ -1028,9 +1030,8 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
             if at_rest:
                 top_ratio = max(top_ratio, _rest_checks(p, y, loc, t, t1, summ))
             for w in range(N_CHECKS):
-                m_start = _check_margin(p, s, K[0, 6], K[0, 1], K[0, 9], K[0, 10], K[0, 11], w)
-                x_hi = _failure_bound(p, s, gmin, summ, w, at_rest, 1.0, m_start, K[fs, 6], K[fs, 1], K[fs, 9],
-                                      K[fs, 10], K[fs, 11])
+                x_hi = _failure_bound(p, s, gmin, summ, w, at_rest, 1.0, K, K[fs, 6], K[fs, 1], K[fs, 9], K[fs, 10],
+                                      K[fs, 11])
                 if x_hi <= 1.0:
                     if not need_dense:
                         need_dense = _prepare_step_dense(t, y, y_new, h, K, work, F, p, sig, s, loc, low_order)
@@ -1088,8 +1089,7 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                 a, av = _ground(loc, te)
                 udd_e, _, _, _, n_e, px_e, py_e, _, _ = evaluate_all(p, sig, s, ye[1], ye[2], ye[3], a, av)
                 for w in range(N_CHECKS):
-                    m_start = _check_margin(p, s, K[0, 6], K[0, 1], K[0, 9], K[0, 10], K[0, 11], w)
-                    x_hi = _failure_bound(p, s, gmin, summ, w, at_rest, x_first, m_start, a, udd_e, n_e, px_e, py_e)
+                    x_hi = _failure_bound(p, s, gmin, summ, w, at_rest, x_first, K, a, udd_e, n_e, px_e, py_e)
                     if x_hi <= x_first:
                         summ[CHECK_SLOTS[w]] = _warning_time(p, sig, s, y, F, h, t, x_first, x_hi, gmin, loc, work,
                                                              w)
