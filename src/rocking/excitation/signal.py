@@ -147,19 +147,16 @@ def cosine_band_exit(amplitude, omega, phase, t, t_stop, lo, hi):
 
 
 @njit(cache=True, inline="always")
-def next_crest(loc, t):
-    """The first local maximum of |a_h| of ``loc`` strictly after time t (s), or inf if it has no
-    more: a cosine's where ω t + φ is a multiple of π, a Ricker wavelet's at τ = −√(3/2)/(π f),
-    0 and +√(3/2)/(π f). Between two crests |a_h| only falls, rises, or falls to zero and rises,
-    so a level it passes there is passed at an end: what a search for a first crossing needs."""
-    mode = loc[0]
-    if mode == LOCAL_COSINE and loc[2] > 0.0:
-        omega, phase = loc[2], loc[3]
+def next_crest_of(loc, k0, t):
+    """next_crest of the localised formula loc[k0:k0+5] (k0 = LOCAL_SIZE: the vertical part)."""
+    mode = loc[k0]
+    if mode == LOCAL_COSINE and loc[k0 + 2] > 0.0:
+        omega, phase = loc[k0 + 2], loc[k0 + 3]
         tau = ((math.floor((omega * t + phase) / math.pi) + 1.0) * math.pi - phase) / omega
         return tau if tau > t else tau + math.pi / omega
-    if mode == LOCAL_RICKER and loc[2] > 0.0:
-        t0 = loc[3]
-        side = math.sqrt(1.5) / (math.pi * loc[2])
+    if mode == LOCAL_RICKER and loc[k0 + 2] > 0.0:
+        t0 = loc[k0 + 3]
+        side = math.sqrt(1.5) / (math.pi * loc[k0 + 2])
         if t < t0 - side:
             return t0 - side
         if t < t0:
@@ -167,6 +164,15 @@ def next_crest(loc, t):
         if t < t0 + side:
             return t0 + side
     return math.inf
+
+
+@njit(cache=True, inline="always")
+def next_crest(loc, t):
+    """The first local maximum of |a_h| of ``loc`` strictly after time t (s), or inf if it has no
+    more: a cosine's where ω t + φ is a multiple of π, a Ricker wavelet's at τ = −√(3/2)/(π f),
+    0 and +√(3/2)/(π f). Between two crests |a_h| only falls, rises, or falls to zero and rises,
+    so a level it passes there is passed at an end: what a search for a first crossing needs."""
+    return next_crest_of(loc, 0, t)
 
 
 @njit(cache=True, inline="always")

@@ -14,7 +14,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..excitation.signal import LOCAL_LINEAR, LOCAL_SIZE, crest_inside, local_value
+from ..excitation.signal import LOCAL_LINEAR, LOCAL_SIZE, crest_inside, local_value, next_crest_of
 from ..integrators import dop853, dopri5
 from .kinematics import (
     END_U,
@@ -398,6 +398,9 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
     g1 = np.empty(ng)
     gp = np.empty(ng)
     gm = np.empty(ng)
+    gq = np.empty(ng)  # the guards at the step's start, at rest (_first_crest_failure)
+    need_q = np.empty((n, N_SUB + 1))  # the friction each interface needs at a step's samples
+    gc = np.empty(ng)
     ym = np.empty(ny)
     lam = np.zeros(nz)
     x_sel = np.zeros(nz)
@@ -460,6 +463,9 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
     # g0 holds the guards at (t, y) after a step accepted without an event (its end guards):
     # the next step need not evaluate them again
     g0_ok = False
+    # gp holds the guards at the last interior sample of the step before (a window of three
+    # samples across the step's start, for a grazing crest there), unless the floor jumped since
+    tail_ok = False
     k0_ok = True  # K[0] holds the right-hand side at (t, y)
     while status == STATUS_COMPLETED and t < t_end:
         # rest after the motion: nothing can move any more
@@ -500,6 +506,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 else:
                     guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0, held, ws)
                     g0_ok = True
+                tail_ok = False
                 k0_ok = False  # K[0] is made when a step needs it (a rest skips it)
             bad = False
             for j in range(ng):
@@ -611,9 +618,15 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
         else:
             _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, hs, loc, gravity, K, F, ws)
         have_dense = True
+        tail = tail_ok and g0_ok
         if not g0_ok:
             guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0, held, ws)
         g0_ok = False
+        rest_step = _all_stuck(nstate, tstate)
+        if rest_step:
+            gq[:] = g0
+        for k in range(n):
+            need_q[k, 0] = _need_of(P, nstate, tstate, y, lam, k)
         first = -1
         x_first = 2.0
         x_lo = 0.0
@@ -622,9 +635,14 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             if sub == N_SUB:
                 # the step's last stage left the contact forces at its end in ws[WS_LAM_END]
                 guards_from(P, ends, anchor, nstate, tstate, y_new, ws[WS_LAM_END], g1, held)
+                for k in range(n):
+                    need_q[k, sub] = _need_of(P, nstate, tstate, y_new, ws[WS_LAM_END], k)
             else:
                 dop853.dense_on(y, F, x_hi, ym, moving, n_moving[0])
                 guards(P, ends, anchor, nstate, tstate, t + x_hi * hs, ym, loc, gravity, g1, held, ws)
+                for k in range(n):
+                    need_q[k, sub] = _need_of(P, nstate, tstate, ym, ws[WS_LAM], k)
+            n_q = sub + 1
             for j in range(ng):
                 if sub == 1 and j % N_GUARD_SLOTS == G_EDGE and g0[j] <= 0.0 and g1[j] < g0[j]:
                     # a block placed flush with the edge below that slides outwards: its corner
@@ -677,19 +695,46 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                         first = j
             if first < 0 and sub >= 2:
                 # a guard whose samples dip towards zero and rise again (a grazing crest, where
-                # a slip starts that μk < μs then keeps going): find the minimum between the
-                # neighbouring samples, and the crossing before it if the minimum is ≤ 0
+                # a slip starts that μk < μs then keeps going): where the parabola through the
+                # last three samples dips near zero between the outer two, find the minimum
+                # there, and the crossing before it if the minimum is ≤ 0. (The parabola, not
+                # "the middle sample is lowest": just after an impact the margin of a rocking
+                # block's friction can start low and dip below zero before the second sample,
+                # 0.032, −0.024 between, 0.051 N; until 2026-12-02 that slip was missed.)
                 x_a = (sub - 2) / N_SUB
                 for j in range(ng):
                     if j % N_GUARD_SLOTS > G_STICK_NEG:
                         continue
-                    if gp[j] > 0.0 and g0[j] > 0.0 and g1[j] > 0.0 and g0[j] < gp[j] and g0[j] <= g1[j] \
-                            and g0[j] < GRAZING * max(gp[j], g1[j]):
+                    if gp[j] > 0.0 and g0[j] > 0.0 and g1[j] > 0.0 and _dips_near(gp[j], g0[j], g1[j], -1.0, 1.0):
                         x_min, g_min = _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_a,
                                                 x_hi, ym, gm, held, ws)
                         if g_min <= 0.0:
                             xr = _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_a, x_min,
                                          gp[j], g_min, ym, gm, held, ws)
+                            if xr < x_first:
+                                x_first = xr
+                                first = j
+            if first < 0 and (sub == N_SUB or (sub == 1 and tail)):
+                # the same for a crest near the step's end or start, which no window of three
+                # samples inside one step has in its middle: the parabola through the last three
+                # samples (the last of the step before and the first two of this one) has its
+                # lowest point within a sample spacing of the end (of the start) and near zero
+                # (until 2026-12-02 a rocking block whose friction need peaked 1e-4 above μs
+                # between a step's last two samples, which read +0.011 and +0.006 N where the
+                # margin fell to −0.023 N, was not seen to slip)
+                for j in range(ng):
+                    if j % N_GUARD_SLOTS > G_STICK_NEG or not (gp[j] > 0.0 and g0[j] > 0.0 and g1[j] > 0.0):
+                        continue
+                    if sub == N_SUB:
+                        near = _dips_near(gp[j], g0[j], g1[j], 0.5, 2.0)
+                    else:
+                        near = _dips_near(gp[j], g0[j], g1[j], -1.0, 1.0)
+                    if near:
+                        x_min, g_min = _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_lo,
+                                                x_hi, ym, gm, held, ws)
+                        if g_min <= 0.0:
+                            xr = _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_lo, x_min,
+                                         g0[j], g_min, ym, gm, held, ws)
                             if xr < x_first:
                                 x_first = xr
                                 first = j
@@ -699,6 +744,17 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 gp[j] = g0[j]
                 g0[j] = g1[j]
             x_lo = x_hi
+        if not rest_step:
+            # (a step at rest needs |a_h|/(g + a_v), tracked at its crest: _track_crest)
+            while n_q > 1 and (n_q - 1) / N_SUB > x_first:
+                n_q -= 1
+            _need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, need_q, n_q, summ, ym, ws)
+        if rest_step:
+            j, xr = _first_crest_failure(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, min(x_first, 1.0),
+                                         gq, gc, ym, gm, held, ws)
+            if j >= 0 and xr < x_first:
+                x_first = xr
+                first = j
         if first >= 0:
             he = x_first * hs
             if he > 0.0:
@@ -752,6 +808,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
         lam[:] = ws[WS_LAM_END]
         _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, True)
         g0_ok = True  # (g0 now holds the guards at the step's end)
+        tail_ok = True
         for k in range(n):
             if held[k] and lam[3 * k + 2] > 0.0:
                 held[k] = False  # the contact pushes again: its force is watched again
@@ -798,6 +855,56 @@ def _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, h
         if (hi - lo) * hs < 1e-13:
             break
     return hi
+
+
+@njit(cache=True, inline="always")
+def _dips_near(ga, gb, gc, lo, hi):
+    """Whether the parabola through three positive samples of a guard one spacing apart (ga, gb,
+    gc) has its lowest point strictly between lo and hi spacings from the middle sample, and
+    below GRAZING × the largest of them."""
+    d2 = ga - 2.0 * gb + gc
+    if not d2 > 0.0:
+        return False
+    xv = (ga - gc) / (2.0 * d2)
+    return lo < xv < hi and gb - (ga - gc) ** 2 / (8.0 * d2) < GRAZING * max(ga, gb, gc)
+
+
+@njit(cache=True, _nrt=False)
+def _first_crest_failure(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, x_end, gq, gc, ym, gm, held, ws):
+    """(guard, fraction) of the first guard of a step spent at rest that fails at a crest of the
+    floor acceleration inside [0, x_end] of the step, and where it reaches zero; (−1, 2) if none.
+    gq holds the guards at the step's start (overwritten).
+
+    Why: at rest every guard is affine in the floor accelerations (the rest band), so over a
+    piece whose vertical part is linear its lowest value lies at a step end or at a crest of a_h
+    (next_crest), and between two crests it is monotone. The step at rest grows to max_step
+    whatever the floor does (the state does not change), and its five samples can straddle a
+    crest: a block under a 13 Hz sine 1 % above μs·g slipped a cycle late until 2026-12-02. A
+    vertical part that is not linear (a user's motion) has its crests checked too, which is not
+    exact when both parts vary."""
+    t_b = t + x_end * hs
+    x_a = 0.0
+    c = t
+    for _ in range(100000):
+        c = min(next_crest_of(loc, 0, c), next_crest_of(loc, LOCAL_SIZE, c))
+        if not c < t_b:
+            break
+        x = (c - t) / hs
+        dop853.dense_on(y, F, x, ym, ws[WS_ACT], ws[WS_N_ACT][0])
+        guards(P, ends, anchor, nstate, tstate, c, ym, loc, gravity, gc, held, ws)
+        first, x_first = -1, 2.0
+        for j in range(gq.shape[0]):
+            if gq[j] > 0.0 and gc[j] <= 0.0:
+                xr = _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_a, x, gq[j], gc[j],
+                             ym, gm, held, ws)
+                if xr < x_first:
+                    first, x_first = j, xr
+        if first >= 0:
+            return first, x_first
+        for j in range(gq.shape[0]):
+            gq[j] = gc[j]
+        x_a = x
+    return -1, 2.0
 
 
 @njit(cache=True, _nrt=False)
@@ -892,6 +999,72 @@ def _track_crest(P, ends, anchor, nstate, tstate, y, t_a, t_b, slip0, summ, lam,
         _track(P, ends, anchor, nstate, tstate, y, tau, slip0, summ, lam, loc, gravity, ws, False)
 
 
+@njit(cache=True, inline="always")
+def _need_of(P, nstate, tstate, y, lam, k):
+    """The friction |T|/N interface k needs at the state y with contact forces lam, where it
+    counts for the summary (a stuck interface, flat or rocking, that pushes), or −1. Not once
+    the block is past its tipping angle and falling: N → 0 there."""
+    if nstate[k] >= ROCK and (tstate[k] == 0 or P[k, P_CAN_SLIP] < 0.5) and lam[3 * k + 2] > 0.0:
+        if abs(y[3 * k + 1]) < math.atan2(P[k, P_BU], P[k, P_HU]):
+            return abs(lam[3 * k]) / lam[3 * k + 2]
+    return -1.0
+
+
+@njit(cache=True, _nrt=False)
+def _need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, q, n_q, summ, ym, ws):
+    """The peak of the friction each interface needs between the samples of a step, on its
+    dense output: q[k, i] holds the need at the step's sample i (fraction i/N_SUB; the first
+    n_q, up to the step's end or its event). Where the best sample comes within 1e-3 of the
+    run's largest need so far (or the parabola through it and its neighbours rises above it), a
+    golden-section search between its neighbours finds the peak to 1e-12 of the step. Until
+    2026-12-02 the need was read at the step ends and events only: 0.230580 where the two-body
+    solver, checked against sympy, reads 0.230609 (a rocking block under a sine; a floor face of
+    μs = 0.23059 then slipped with the summary saying it needed less)."""
+    n = P.shape[0]
+    dx = 1.0 / N_SUB
+    x_end = (n_q - 1) * dx
+    for k in range(n):
+        b, qb = -1, -1.0
+        for i in range(n_q):
+            if q[k, i] > qb:
+                b, qb = i, q[k, i]
+        if b < 0:
+            continue
+        best = summ[k, B_MU_REQ]
+        est = qb
+        if 0 < b < n_q - 1 and q[k, b - 1] >= 0.0 and q[k, b + 1] >= 0.0:
+            d2 = q[k, b - 1] - 2.0 * qb + q[k, b + 1]
+            if d2 < 0.0:
+                est = qb - (q[k, b - 1] - q[k, b + 1]) ** 2 / (8.0 * d2)
+        if not (qb > (1.0 - 1e-3) * best or est > best):
+            continue
+        lo, hi = max(0.0, b * dx - dx), min(x_end, b * dx + dx)
+        r = 0.6180339887498949
+        xc, xd = hi - r * (hi - lo), lo + r * (hi - lo)
+        fc = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, xc, k, ym, ws)
+        fd = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, xd, k, ym, ws)
+        for _ in range(80):
+            if (hi - lo) < 1e-12:
+                break
+            if fc > fd:
+                hi, xd, fd = xd, xc, fc
+                xc = hi - r * (hi - lo)
+                fc = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, xc, k, ym, ws)
+            else:
+                lo, xc, fc = xc, xd, fd
+                xd = lo + r * (hi - lo)
+                fd = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, xd, k, ym, ws)
+        summ[k, B_MU_REQ] = max(best, qb, fc, fd)
+
+
+@njit(cache=True, _nrt=False)
+def _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, x, k, ym, ws):
+    """The need of interface k (_need_of) on the step's dense output at fraction x."""
+    dop853.dense_on(y, F, x, ym, ws[WS_ACT], ws[WS_N_ACT][0])
+    evaluate(P, ends, anchor, nstate, tstate, t + x * hs, ym, loc, gravity, ws[WS_DY], ws[WS_LAM], ws)
+    return _need_of(P, nstate, tstate, ym, ws[WS_LAM], k)
+
+
 @njit(cache=True, _nrt=False)
 def _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, forces_known):
     """Peaks, first times, the friction each stuck interface needs, and the slip path, at the end
@@ -902,12 +1075,9 @@ def _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity
     if not forces_known:
         evaluate(P, ends, anchor, nstate, tstate, t, y, loc, gravity, ws[WS_DY], lam, ws)
     for k in range(n):
-        # (not once the block is past its tipping angle and falling: N → 0 there)
-        tipped = abs(y[3 * k + 1]) >= math.atan2(P[k, P_BU], P[k, P_HU])
-        if nstate[k] >= ROCK and (tstate[k] == 0 or P[k, P_CAN_SLIP] < 0.5) and lam[3 * k + 2] > 0.0 and not tipped:
-            ratio = abs(lam[3 * k]) / lam[3 * k + 2]
-            if ratio > summ[k, B_MU_REQ]:
-                summ[k, B_MU_REQ] = ratio
+        ratio = _need_of(P, nstate, tstate, y, lam, k)
+        if ratio > summ[k, B_MU_REQ]:
+            summ[k, B_MU_REQ] = ratio
     theta = 0.0
     for k in range(n):
         i = 3 * k
