@@ -1355,16 +1355,31 @@ def test_a_rocking_block_whose_friction_need_peaks_just_above_mu_s_slips_when_to
         assert abs(ours - ref) < 1e-8, (below, ours, ref)
 
 
-@pytest.mark.parametrize("case", [0, 2, 3, 4, 5, 6])
+@pytest.mark.parametrize("case", range(len(_NEAR_SLIP)))
 def test_the_friction_a_rocking_block_needs_is_its_peak_between_the_samples(case):
     """The largest |T|/N the floor face of a rocking block needs, against the two-body solver's
     (checked against sympy), to 1e-9: measured 3e-11. a585e4a's engine read it at step ends and
-    events only, up to 1e-3 low (0.263010 for 0.263252 on a 0.4 × 1.6 m block). (Case 1 is left
-    out: there the two-body solver reads 9e-5 low, and both solvers slip with a face 1e-6 above
-    its value; see docs/theory/stack.md §9.)"""
+    events only, up to 1e-3 low (0.263010 for 0.263252 on a 0.4 × 1.6 m block). In case 1 the
+    need peaks 3 ms before an impact, and there the two-body solver read 9e-5 low until
+    2026-12-02 (its search in a step cut by an event never ran)."""
     width, height, amp, f = _NEAR_SLIP[case]
     motion = rocking.Harmonic(amplitude=amp, frequency=f, form="sin", cycles=2.0)
     stack, system = _near_slip_pair(width, height, 5.0)
     ours = simulate_stack(stack, motion).summary()["interfaces"][0]["required_friction"]
     ref = rocking.simulate(system, motion).summary()["required_top_friction"]
     assert ours == pytest.approx(ref, rel=1e-9)
+
+
+def test_the_friction_a_rocking_block_needs_peaks_just_before_an_impact_as_its_saved_forces_show():
+    """``rocking.simulate``'s required_top_friction for a single rocking block is the largest
+    |P_x|/P_y of its own saved forces (every 20 µs), which can only read lower: at most by the
+    curvature of the need over 10 µs, 1e-9 of it here. Its peak falls 3 ms before an impact, in
+    the step cut by the event; until 2026-12-02 that step's search never ran (0.215422 against
+    the saved forces' 0.215442)."""
+    width, height, amp, f = _NEAR_SLIP[1]
+    motion = rocking.Harmonic(amplitude=amp, frequency=f, form="sin", cycles=2.0)
+    r = rocking.simulate(_near_slip_pair(width, height, 5.0)[1], motion, options=dict(save_dt=2e-5))
+    forces = r.contact_forces()
+    saved = np.nanmax(np.abs(forces["Px"]) / forces["Py"])
+    need = r.summary()["required_top_friction"]
+    assert saved * (1.0 - 1e-12) <= need <= saved * (1.0 + 1e-9), (need, saved)
