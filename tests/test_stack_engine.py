@@ -1383,3 +1383,20 @@ def test_the_friction_a_rocking_block_needs_peaks_just_before_an_impact_as_its_s
     saved = np.nanmax(np.abs(forces["Px"]) / forces["Py"])
     need = r.summary()["required_top_friction"]
     assert saved * (1.0 - 1e-12) <= need <= saved * (1.0 + 1e-9), (need, saved)
+
+
+def test_the_friction_a_rocking_block_needs_just_before_an_impact_is_found_in_the_step_the_impact_cuts():
+    """A block whose floor face's need peaks 0.1 ms before an impact (θ = 2e-4 rad there): the
+    stack engine's need must be the largest |P_x|/P_y of the two-body solver's saved forces
+    (every 10 µs; a lower bound, 1e-10 below the peak here), to 1e-9. Until 2026-12-02 the
+    stretch between the last sample of the step and the impact was not searched: 0.2583853
+    for 0.2584108."""
+    width, height, amp, f = 0.5583895281255041, 2.9137754037140655, 4.605614512199354, 2.6922176267460576
+    motion = rocking.Harmonic(amplitude=amp, frequency=f, form="sin", cycles=2.0)
+    stack, system = _near_slip_pair(width, height, 5.0)
+    r = rocking.simulate(system, motion, duration=4.0, options=dict(save_dt=1e-5))
+    forces = r.contact_forces()
+    alpha = math.atan2(width, height)
+    saved = np.nanmax(np.where(np.abs(r.theta) <= alpha, np.abs(forces["Px"]) / forces["Py"], -1.0))
+    ours = simulate_stack(stack, motion, duration=4.0).summary()["interfaces"][0]["required_friction"]
+    assert saved * (1.0 - 1e-12) <= ours <= saved * (1.0 + 1e-9), (ours, saved)

@@ -748,7 +748,8 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             # (a step at rest needs |a_h|/(g + a_v), tracked at its crest: _track_crest)
             while n_q > 1 and (n_q - 1) / N_SUB > x_first:
                 n_q -= 1
-            _need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, need_q, n_q, summ, ym, ws)
+            _need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, need_q, n_q, min(x_first, 1.0),
+                         summ, ym, ws)
         if rest_step:
             j, xr = _first_crest_failure(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, min(x_first, 1.0),
                                          gq, gc, ym, gm, held, ws)
@@ -1011,10 +1012,12 @@ def _need_of(P, nstate, tstate, y, lam, k):
 
 
 @njit(cache=True, _nrt=False)
-def _need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, q, n_q, summ, ym, ws):
+def _need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, q, n_q, x_stop, summ, ym, ws):
     """The peak of the friction each interface needs between the samples of a step, on its
     dense output: q[k, i] holds the need at the step's sample i (fraction i/N_SUB; the first
-    n_q, up to the step's end or its event). Where the best sample comes within 1e-3 of the
+    n_q, up to the step's end or its event at fraction x_stop, beyond the last of them: the
+    stretch from the sample before it to the event is searched the same way, since an impact
+    often follows the peak closely). Where the best sample comes within 1e-3 of the
     run's largest need so far (or the parabola through it and its neighbours rises above it), a
     golden-section search between its neighbours finds the peak to 1e-12 of the step. Until
     2026-12-02 the need was read at the step ends and events only: 0.230580 where the two-body
@@ -1039,22 +1042,37 @@ def _need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, q, 
         if not (qb > (1.0 - 1e-3) * best or est > best):
             continue
         lo, hi = max(0.0, b * dx - dx), min(x_end, b * dx + dx)
-        r = 0.6180339887498949
-        xc, xd = hi - r * (hi - lo), lo + r * (hi - lo)
-        fc = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, xc, k, ym, ws)
-        fd = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, xd, k, ym, ws)
-        for _ in range(80):
-            if (hi - lo) < 1e-12:
-                break
-            if fc > fd:
-                hi, xd, fd = xd, xc, fc
-                xc = hi - r * (hi - lo)
-                fc = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, xc, k, ym, ws)
-            else:
-                lo, xc, fc = xc, xd, fd
-                xd = lo + r * (hi - lo)
-                fd = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, xd, k, ym, ws)
-        summ[k, B_MU_REQ] = max(best, qb, fc, fd)
+        summ[k, B_MU_REQ] = max(best, qb, _need_peak(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, lo,
+                                                     hi, k, ym, ws))
+    if x_stop > x_end:
+        for k in range(n):
+            best = summ[k, B_MU_REQ]
+            f_stop = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, x_stop, k, ym, ws)
+            if not max(q[k, n_q - 1], f_stop) > (1.0 - 1e-3) * best:
+                continue
+            summ[k, B_MU_REQ] = max(best, f_stop, _need_peak(P, ends, anchor, nstate, tstate, t, y, hs, F, loc,
+                                                             gravity, max(0.0, x_end - dx), x_stop, k, ym, ws))
+
+
+@njit(cache=True, _nrt=False)
+def _need_peak(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, lo, hi, k, ym, ws):
+    """The largest need of interface k over [lo, hi] of the step (golden section, to 1e-12)."""
+    r = 0.6180339887498949
+    xc, xd = hi - r * (hi - lo), lo + r * (hi - lo)
+    fc = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, xc, k, ym, ws)
+    fd = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, xd, k, ym, ws)
+    for _ in range(80):
+        if (hi - lo) < 1e-12:
+            break
+        if fc > fd:
+            hi, xd, fd = xd, xc, fc
+            xc = hi - r * (hi - lo)
+            fc = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, xc, k, ym, ws)
+        else:
+            lo, xc, fc = xc, xd, fd
+            xd = lo + r * (hi - lo)
+            fd = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, xd, k, ym, ws)
+    return max(fc, fd)
 
 
 @njit(cache=True, _nrt=False)
