@@ -693,7 +693,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                     if xr < x_first:
                         x_first = xr
                         first = j
-            if first < 0 and sub >= 2:
+            if first < 0 and (sub >= 2 or tail):
                 # a guard whose samples dip towards zero and rise again (a grazing crest, where
                 # a slip starts that μk < μs then keeps going): where the parabola through the
                 # last three samples dips near zero between the outer two, find the minimum
@@ -701,43 +701,24 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 # "the middle sample is lowest": just after an impact the margin of a rocking
                 # block's friction can start low and dip below zero before the second sample,
                 # 0.032, −0.024 between, 0.051 N; until 2026-12-02 that slip was missed.)
-                x_a = (sub - 2) / N_SUB
-                for j in range(ng):
-                    if j % N_GUARD_SLOTS > G_STICK_NEG:
-                        continue
-                    if gp[j] > 0.0 and g0[j] > 0.0 and g1[j] > 0.0 and _dips_near(gp[j], g0[j], g1[j], -1.0, 1.0):
-                        x_min, g_min = _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_a,
-                                                x_hi, ym, gm, held, ws)
-                        if g_min <= 0.0:
-                            xr = _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_a, x_min,
-                                         gp[j], g_min, ym, gm, held, ws)
-                            if xr < x_first:
-                                x_first = xr
-                                first = j
-            if first < 0 and (sub == N_SUB or (sub == 1 and tail)):
-                # the same for a crest near the step's end or start, which no window of three
-                # samples inside one step has in its middle: the parabola through the last three
-                # samples (the last of the step before and the first two of this one) has its
-                # lowest point within a sample spacing of the end (of the start) and near zero
-                # (until 2026-12-02 a rocking block whose friction need peaked 1e-4 above μs
-                # between a step's last two samples, which read +0.011 and +0.006 N where the
-                # margin fell to −0.023 N, was not seen to slip)
+                # The same for a crest near the step's end or start, which no window of three
+                # samples inside one step has in its middle: in the last window the lowest
+                # point may lie up to a spacing past the step's end, and in the first the
+                # window's first sample is the last one of the step before (until 2026-12-02
+                # a rocking block whose friction need peaked 1e-4 above μs between a step's
+                # last two samples, which read +0.011 and +0.006 N where the margin fell to
+                # −0.023 N, was not seen to slip).
+                x_w = max((sub - 2) / N_SUB, 0.0)
+                w_hi = 2.0 if sub == N_SUB else 1.0
                 for j in range(ng):
                     if j % N_GUARD_SLOTS > G_STICK_NEG or not (gp[j] > 0.0 and g0[j] > 0.0 and g1[j] > 0.0):
                         continue
-                    if sub == N_SUB:
-                        near = _dips_near(gp[j], g0[j], g1[j], 0.5, 2.0)
-                    else:
-                        near = _dips_near(gp[j], g0[j], g1[j], -1.0, 1.0)
-                    if near:
-                        x_min, g_min = _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_lo,
-                                                x_hi, ym, gm, held, ws)
-                        if g_min <= 0.0:
-                            xr = _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_lo, x_min,
-                                         g0[j], g_min, ym, gm, held, ws)
-                            if xr < x_first:
-                                x_first = xr
-                                first = j
+                    if _dips_near(gp[j], g0[j], g1[j], -1.0, w_hi):
+                        xr = _graze(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_w, x_hi,
+                                    gp[j] if sub >= 2 else g0[j], ym, gm, held, ws)
+                        if xr < x_first:
+                            x_first = xr
+                            first = j
             if first >= 0:
                 break
             for j in range(ng):
@@ -749,7 +730,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             while n_q > 1 and (n_q - 1) / N_SUB > x_first:
                 n_q -= 1
             _need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, need_q, n_q, min(x_first, 1.0),
-                         summ, ym, ws)
+                         summ, ym, gm, held, ws)
         if rest_step:
             j, xr = _first_crest_failure(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, min(x_first, 1.0),
                                          gq, gc, ym, gm, held, ws)
@@ -858,6 +839,17 @@ def _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, h
     return hi
 
 
+@njit(cache=True, _nrt=False)
+def _graze(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, hi, g_lo, ym, gm, held, ws):
+    """Fraction of the step where guard j, positive at lo (g_lo) and expected to dip near zero
+    within [lo, hi], first reaches zero there; 2 if its minimum stays above zero."""
+    x_min, g_min = _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, hi, ym, gm, held, ws)
+    if g_min > 0.0:
+        return 2.0
+    return _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, x_min, g_lo, g_min, ym, gm,
+                   held, ws)
+
+
 @njit(cache=True, inline="always")
 def _dips_near(ga, gb, gc, lo, hi):
     """Whether the parabola through three positive samples of a guard one spacing apart (ga, gb,
@@ -910,37 +902,50 @@ def _first_crest_failure(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, grav
 
 @njit(cache=True, _nrt=False)
 def _minimum(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, lo, hi, ym, gm, held, ws):
-    """(x, g) at the minimum of guard j over [lo, hi] of the step (golden section on the dense
-    output); stops early once the guard is seen ≤ 0."""
+    """(x, g) at the minimum of guard j over [lo, hi] of the step, to 1e-12 s; stops early once
+    the guard is seen ≤ 0."""
+    return _golden(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, False, lo, hi, 1e-12 / hs, ym, gm,
+                   held, ws)
+
+
+@njit(cache=True, inline="always")
+def _probe(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, of_need, x, ym, gm, held, ws):
+    """What _golden minimises at fraction x of the step: guard j, or (of_need) minus the need of
+    interface j."""
+    if of_need:
+        return -_need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, x, j, ym, ws)
+    dop853.dense_on(y, F, x, ym, ws[WS_ACT], ws[WS_N_ACT][0])
+    guards(P, ends, anchor, nstate, tstate, t + x * hs, ym, loc, gravity, gm, held, ws)
+    return gm[j]
+
+
+@njit(cache=True, _nrt=False)
+def _golden(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, of_need, lo, hi, tol, ym, gm, held, ws):
+    """(x, f) at the minimum over [lo, hi] of the step of _probe's f (golden section on the dense
+    output, until the bracket is narrower than tol, a fraction of the step). A guard's search
+    stops early once f ≤ 0: the guard fails there, and _locate finds where it first did."""
     r = 0.6180339887498949
     a, b = lo, hi
     c = b - r * (b - a)
     d = a + r * (b - a)
-    dop853.dense_on(y, F, c, ym, ws[WS_ACT], ws[WS_N_ACT][0])
-    guards(P, ends, anchor, nstate, tstate, t + c * hs, ym, loc, gravity, gm, held, ws)
-    fc = gm[j]
-    dop853.dense_on(y, F, d, ym, ws[WS_ACT], ws[WS_N_ACT][0])
-    guards(P, ends, anchor, nstate, tstate, t + d * hs, ym, loc, gravity, gm, held, ws)
-    fd = gm[j]
+    fc = _probe(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, of_need, c, ym, gm, held, ws)
+    fd = _probe(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, of_need, d, ym, gm, held, ws)
     for it in range(80):
-        if fc <= 0.0:
-            return c, fc
-        if fd <= 0.0:
-            return d, fd
-        if (b - a) * hs < 1e-12:
+        if not of_need:
+            if fc <= 0.0:
+                return c, fc
+            if fd <= 0.0:
+                return d, fd
+        if b - a < tol:
             break
         if fc < fd:
             b, d, fd = d, c, fc
             c = b - r * (b - a)
-            dop853.dense_on(y, F, c, ym, ws[WS_ACT], ws[WS_N_ACT][0])
-            guards(P, ends, anchor, nstate, tstate, t + c * hs, ym, loc, gravity, gm, held, ws)
-            fc = gm[j]
+            fc = _probe(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, of_need, c, ym, gm, held, ws)
         else:
             a, c, fc = c, d, fd
             d = a + r * (b - a)
-            dop853.dense_on(y, F, d, ym, ws[WS_ACT], ws[WS_N_ACT][0])
-            guards(P, ends, anchor, nstate, tstate, t + d * hs, ym, loc, gravity, gm, held, ws)
-            fd = gm[j]
+            fd = _probe(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, of_need, d, ym, gm, held, ws)
     if fc < fd:
         return c, fc
     return d, fd
@@ -1012,7 +1017,8 @@ def _need_of(P, nstate, tstate, y, lam, k):
 
 
 @njit(cache=True, _nrt=False)
-def _need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, q, n_q, x_stop, summ, ym, ws):
+def _need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, q, n_q, x_stop, summ, ym, gm, held,
+                 ws):
     """The peak of the friction each interface needs between the samples of a step, on its
     dense output: q[k, i] holds the need at the step's sample i (fraction i/N_SUB; the first
     n_q, up to the step's end or its event at fraction x_stop, beyond the last of them: the
@@ -1043,7 +1049,7 @@ def _need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, q, 
             continue
         lo, hi = max(0.0, b * dx - dx), min(x_end, b * dx + dx)
         summ[k, B_MU_REQ] = max(best, qb, _need_peak(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, lo,
-                                                     hi, k, ym, ws))
+                                                     hi, k, ym, gm, held, ws))
     if x_stop > x_end:
         for k in range(n):
             best = summ[k, B_MU_REQ]
@@ -1051,28 +1057,17 @@ def _need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, q, 
             if not max(q[k, n_q - 1], f_stop) > (1.0 - 1e-3) * best:
                 continue
             summ[k, B_MU_REQ] = max(best, f_stop, _need_peak(P, ends, anchor, nstate, tstate, t, y, hs, F, loc,
-                                                             gravity, max(0.0, x_end - dx), x_stop, k, ym, ws))
+                                                             gravity, max(0.0, x_end - dx), x_stop, k, ym, gm, held,
+                                                             ws))
 
 
 @njit(cache=True, _nrt=False)
-def _need_peak(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, lo, hi, k, ym, ws):
-    """The largest need of interface k over [lo, hi] of the step (golden section, to 1e-12)."""
-    r = 0.6180339887498949
-    xc, xd = hi - r * (hi - lo), lo + r * (hi - lo)
-    fc = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, xc, k, ym, ws)
-    fd = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, xd, k, ym, ws)
-    for _ in range(80):
-        if (hi - lo) < 1e-12:
-            break
-        if fc > fd:
-            hi, xd, fd = xd, xc, fc
-            xc = hi - r * (hi - lo)
-            fc = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, xc, k, ym, ws)
-        else:
-            lo, xc, fc = xc, xd, fd
-            xd = lo + r * (hi - lo)
-            fd = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, xd, k, ym, ws)
-    return max(fc, fd)
+def _need_peak(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, lo, hi, k, ym, gm, held, ws):
+    """The largest need of interface k over [lo, hi] of the step (golden section, to 1e-12 of
+    the step)."""
+    x, f = _golden(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, k, True, lo, hi, 1e-12, ym, gm, held,
+                   ws)
+    return -f
 
 
 @njit(cache=True, _nrt=False)
