@@ -205,6 +205,27 @@ def _need(p, theta, px, py):
     return abs(px) / py if py > 0.0 and abs(theta) <= p[ALPHA] else 0.0
 
 
+@njit(cache=True)
+def _need_rate(p, sig, s, y, dy, t, loc, h):
+    """The rate (1/s) at which the friction the statue's base needs changes at (t, y), whose
+    derivatives are ``dy`` (a row of K), by a difference over 1e-3 of the step h along the
+    tangent (its error, ~1e-3 of the rate, only matters where the rate is near zero: then the
+    peak it points to is at the point itself). Only its sign and size are used."""
+    d = 1e-3 * h
+    a, av = _ground(loc, t)
+    _, _, _, _, _, px, py, _, _ = evaluate_all(p, sig, s, y[1], y[2], y[3], a, av)
+    here = _need(p, y[2], px, py)
+    a, av = _ground(loc, t + d)
+    _, _, _, _, _, px, py, _, _ = evaluate_all(p, sig, s, y[1] + d * dy[1], y[2] + d * dy[2], y[3] + d * dy[3], a,
+                                               av)
+    return (_need(p, y[2] + d * dy[2], px, py) - here) / d
+
+
+#: Of a step, the widest stretch between two samples of the need next to an end (DOP853's first
+#: interior stage is at c = 0.053 and its last at 0.857; the 5(4) pair's at 0.2 and 0.889).
+END_GAP = 0.25
+
+
 @njit(cache=True, inline="always")
 def _watched(p, summ, which):
     """Whether check ``which`` can still raise its warning: not raised yet, and not off (no top
@@ -1017,15 +1038,29 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                 next_grid += 1
 
         if first < 0:
-            if gmin[N_GUARDS] > top_ratio:
-                # A new largest need at a stage: if it lies above both ends, the peak is inside
-                # the step, between the stages; find it on the dense output (rare: only a step
-                # that raises the run's largest need so far).
-                if gmin[N_GUARDS] > max(_need(p, y[2], K[0, 10], K[0, 11]), _need(p, y_new[2], K[fs, 10], K[fs, 11])):
-                    if not need_dense:
-                        need_dense = _prepare_step_dense(t, y, y_new, h, K, work, F, p, sig, s, loc, low_order)
-                    top_ratio = max(top_ratio, -_lowest(p, sig, s, y, F, h, 1.0, -1.0, loc, t, work, NEED)[0])
-            top_ratio = max(top_ratio, gmin[N_GUARDS])
+            # The friction the statue's base needs: its values at the step's ends are exact, those
+            # at the stages (states off the trajectory, of lower order) only hint where it peaks:
+            # until 2026-12-03 they were taken as values, and one run read 0.0779872 where its
+            # own saved forces peak at 0.0779869. The peak is searched on the dense output when
+            # it may lie inside the step above the run's largest so far: a stage above both
+            # ends, or an end whose need falls towards it (a peak between it and the stage next
+            # to it, which one run read 5e-6 low). A parabola through an end with rate q that
+            # peaks within END_GAP of it rises at most |q|·END_GAP·h/2 above it.
+            n0 = _need(p, y[2], K[0, 10], K[0, 11])
+            n1 = _need(p, y_new[2], K[fs, 10], K[fs, 11])
+            top_ratio = max(top_ratio, n1)
+            m = gmin[N_GUARDS]
+            search = m > top_ratio and m > max(n0, n1)
+            if not search and max(m, n1, n0) > top_ratio - (max(m, n0, n1) - min(m, n0, n1)):
+                q = _need_rate(p, sig, s, y_new, K[fs], t1, loc, -h)
+                search = q < 0.0 and n1 - q * END_GAP * h / 2 > top_ratio
+                if not search:
+                    q = _need_rate(p, sig, s, y, K[0], t, loc, h)
+                    search = q > 0.0 and n0 + q * END_GAP * h / 2 > top_ratio
+            if search:
+                if not need_dense:
+                    need_dense = _prepare_step_dense(t, y, y_new, h, K, work, F, p, sig, s, loc, low_order)
+                top_ratio = max(top_ratio, -_lowest(p, sig, s, y, F, h, 1.0, -1.0, loc, t, work, NEED)[0])
             at_rest = sig == 0 and s == 0
             if at_rest:
                 top_ratio = max(top_ratio, _rest_checks(p, y, loc, t, t1, summ))
@@ -1074,13 +1109,16 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                 for j in range(K.shape[1]):
                     Ke[0, j] = K[0, j]
                 _step(t, y, te - t, Ke, work, ye, p, sig, s, loc, gmin, summ, False)
-                top_ratio = max(top_ratio, gmin[N_GUARDS])  # stages up to the event only
+                # (the stages up to the event only hint where the need peaks, as above)
+                a, av = _ground(loc, te)
+                _, _, _, _, _, px, py, _, _ = evaluate_all(p, sig, s, ye[1], ye[2], ye[3], a, av)
+                top_ratio = max(top_ratio, _need(p, ye[2], px, py))
                 for w in range(N_CHECKS):  # (as fractions of the step the dense output is of)
                     gmin[N_GUARDS + 1 + N_CHECKS + w] *= x_first
             at_rest = sig == 0 and s == 0
             if at_rest:
                 top_ratio = max(top_ratio, _rest_checks(p, y, loc, t, te, summ))
-            elif x_first > 0.0 and gmin[N_GUARDS] > top_before:
+            elif x_first > 0.0 and (gmin[N_GUARDS] > top_before or top_ratio > top_before):
                 # (the stages of the step, or of the step to the event: a peak up to the event
                 # may lie between them, as in an accepted step above. Compared with the largest
                 # need before this step: until 2026-12-02 it was compared after the stages had

@@ -529,6 +529,9 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 band_ok = False
                 g0_ok = False
                 k0_ok = False
+                # the new mode's first instant (a slip that starts at the jump starts now, not
+                # at the end of the step after it)
+                _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
         if ib < nb:
             t_lim = min(t_lim, breakpoints[ib])
         if t_settle > t and t_settle < t_lim:
@@ -1379,6 +1382,56 @@ def _project_onto_mode(P, ends, anchor, nstate, tstate, z, zd, ah, av, gravity):
 
 
 @njit(cache=True)
+def _centre_velocities(P, ends, anchor, z, zd):
+    """Each block's centre velocity (n × 2, m/s) at (z, ż)."""
+    A, beta, C, X, Xd, th, thd = new_frame(P.shape[0])
+    forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, th, thd)
+    return Xd
+
+
+@njit(cache=True)
+def _impact_needs(P, ends, anchor, nstate, tstate, z, zd, xd_before, summ):
+    """The friction each interface needed through an impact, into its largest need: the
+    impulse that crossed it is the change of momentum of the blocks above it (the floor's
+    motion and gravity give none in an instant), split along the face of contact and across it.
+    Counted where the interface came out of the impact stuck (or cannot slip) and in contact
+    while the block stands (as the forces: _need_of). The two-body solver counts the impulse
+    on the statue's base in its required_top_friction the same way (transitions.py). With a
+    restitution below Housner's value a slender block's impact needs far more friction than its
+    rocking: (h/b)·(1 − r)/(1 + r), 3.15 where the forces between its impacts needed 0.083
+    (until 2026-12-03 the engine reported the 0.083)."""
+    n = P.shape[0]
+    A, beta, C, X, Xd, th, thd = new_frame(n)
+    forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, th, thd)
+    # impulses are solved to 1e-9 of the momentum before the impact: below 1e-6 of it their
+    # ratio is noise (a rest landing's)
+    scale = 0.0
+    for j in range(n):
+        scale += P[j, P_MASS] * math.hypot(xd_before[j, 0], xd_before[j, 1])
+    lx, ly = 0.0, 0.0
+    for j in range(n - 1, -1, -1):
+        lx += P[j, P_MASS] * (Xd[j, 0] - xd_before[j, 0])
+        ly += P[j, P_MASS] * (Xd[j, 1] - xd_before[j, 1])
+        if nstate[j] < ROCK or (tstate[j] != 0 and P[j, P_CAN_SLIP] > 0.5):
+            continue
+        if abs(z[3 * j + 1]) >= math.atan2(P[j, P_BU], P[j, P_HU]):
+            continue
+        # the face: the lower block's top (an upper corner on it) or the upper block's base;
+        # a block's frame turns by R(Θ) = [[c, s], [−s, c]] (kinematics.forward)
+        if ends[j, anchor[j], 0] == END_U:
+            face = th[j - 1] if j > 0 else 0.0
+        else:
+            face = th[j]
+        c, sn = math.cos(face), math.sin(face)
+        lt = c * lx - sn * ly
+        ln = sn * lx + c * ly
+        if ln > 1e-6 * scale:
+            ratio = abs(lt) / ln
+            if ratio > summ[j, B_MU_REQ]:
+                summ[j, B_MU_REQ] = ratio
+
+
+@njit(cache=True)
 def _energy_allowance(P, t_before, rest_velocity):
     """What an impact may add to the kinetic energy ``t_before`` (J) without being said to create
     energy, J: the accuracy of the impulse solve (impulses exact to 1e-9 of the momentum scale
@@ -1420,6 +1473,7 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
         geo[j] = nstate[j]
     impact = (slot == G_OTHER and nstate[k] != FLAT) or (slot == G_ANCHOR and nstate[k] == OPEN)
     if impact:
+        xd_before = _centre_velocities(P, ends, anchor, z, zd)
         e_located = _energy_of(P, ends, anchor, y, gravity)
         e_hit = anchor[k] if slot == G_ANCHOR else 1 - anchor[k]
         if e_hit != anchor[k]:
@@ -1455,6 +1509,8 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
             zd[i] = 0.0
             zd[i + 2] = 0.0
             zd[i + 1] = w
+            tstate[k] = 0
+            _impact_needs(P, ends, anchor, nstate, tstate, z, zd, xd_before, summ)
             if abs(w) < rest_velocity:
                 zd[i + 1] = 0.0
                 nstate[k] = FLAT
@@ -1509,6 +1565,8 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
             if code != SELECT_OK:
                 n_ev = _record(events, n_ev, t, k, EVENT_IMPACT, -1, 0, 0.0)
                 return STATUS_INCONSISTENT, d_impact, n_ev
+            # the impact law's own outcome (as the two-body solver's, before its rest rule)
+            _impact_needs(P, ends, anchor, nstate, tstate, z, x_sel[:nz], xd_before, summ)
             # rest: an impact that leaves almost no rotation lands the block flat (ends Zeno
             # sequences); so does one that leaves it lifting, flat, slower than rest_velocity × its
             # size (a rise the event location cannot resolve: the same impact came again at the
