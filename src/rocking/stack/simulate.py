@@ -163,7 +163,9 @@ class StackResponse:
         describe the top block, the statue, as ``rocking run`` does for a single statue. SI units,
         radians, null when it did not happen. ``energy_balance_error`` is the largest
         |:meth:`balance_error`| over the run divided by its energy scale, max |W_in| + max |E − E₀|
-        (0 when nothing moved)."""
+        (0 when nothing moved). An interface's ``required_friction`` is the largest |T|/N it needed
+        while it stuck: its contact forces between impacts and, at each impact it came out of
+        stuck, the ratio of the impulse that crossed it."""
         top = self.blocks[-1]
         scale = float(np.max(np.abs(self.input_work)) + np.max(np.abs(self.energy - self.initial_energy)))
         out = {key: top[key] for key in (
