@@ -206,15 +206,12 @@ def _need(p, theta, px, py):
 
 
 @njit(cache=True)
-def _need_rate(p, sig, s, y, dy, t, loc, h):
-    """The rate (1/s) at which the friction the statue's base needs changes at (t, y), whose
-    derivatives are ``dy`` (a row of K), by a difference over 1e-3 of the step h along the
-    tangent (its error, ~1e-3 of the rate, only matters where the rate is near zero: then the
-    peak it points to is at the point itself). Only its sign and size are used."""
+def _need_rate(p, sig, s, y, dy, here, t, loc, h):
+    """The rate (1/s) at which the friction the statue's base needs changes at (t, y), where it
+    is ``here`` and the derivatives are ``dy`` (a row of K), by a difference over 1e-3 of the
+    step h along the tangent (its error, ~1e-3 of the rate, only matters where the rate is near
+    zero: then the peak it points to is at the point itself). Only its sign and size are used."""
     d = 1e-3 * h
-    a, av = _ground(loc, t)
-    _, _, _, _, _, px, py, _, _ = evaluate_all(p, sig, s, y[1], y[2], y[3], a, av)
-    here = _need(p, y[2], px, py)
     a, av = _ground(loc, t + d)
     _, _, _, _, _, px, py, _, _ = evaluate_all(p, sig, s, y[1] + d * dy[1], y[2] + d * dy[2], y[3] + d * dy[3], a,
                                                av)
@@ -1052,10 +1049,10 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
             m = gmin[N_GUARDS]
             search = m > top_ratio and m > max(n0, n1)
             if not search and max(m, n1, n0) > top_ratio - (max(m, n0, n1) - min(m, n0, n1)):
-                q = _need_rate(p, sig, s, y_new, K[fs], t1, loc, -h)
+                q = _need_rate(p, sig, s, y_new, K[fs], n1, t1, loc, -h)
                 search = q < 0.0 and n1 - q * END_GAP * h / 2 > top_ratio
                 if not search:
-                    q = _need_rate(p, sig, s, y, K[0], t, loc, h)
+                    q = _need_rate(p, sig, s, y, K[0], n0, t, loc, h)
                     search = q > 0.0 and n0 + q * END_GAP * h / 2 > top_ratio
             if search:
                 if not need_dense:
