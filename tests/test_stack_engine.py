@@ -1496,24 +1496,61 @@ def test_the_two_body_solvers_need_is_the_peak_of_its_own_saved_forces_and_impac
 
 
 @pytest.mark.parametrize("r", [0.6, 0.3])
-def test_the_friction_an_impact_needs_counts_in_the_interfaces_need(r):
+@pytest.mark.parametrize("grip", [None, 5.0])
+def test_the_friction_an_impact_needs_counts_in_the_interfaces_need(r, grip):
     """A 0.2 × 1.2 m block rocking on a floor face that never slips, with θ̇⁺ = r·θ̇⁻ at its
     impacts. The impulse of an impact is the change of the block's momentum: m·(h/2)·Δθ̇ along
     the floor and m·(b/2)·(|θ̇⁺| + |θ̇⁻|) across it, so each impact needs the friction
     (h/b)·(1 − r)/(1 + r) (1.5 and 3.23 here) whatever its speed, far more than the forces
     between impacts (0.217). Until 2026-12-03 the stack engine left impacts out of an interface's
-    need and reported that 0.217; the two-body solver counts them (its required_top_friction)."""
+    need and reported that 0.217; the two-body solver counts them (its required_top_friction).
+    ``grip``: the face's μs = μk (None: it never slips); at 5 every impact sticks."""
     width, height = 0.2, 1.2
-    stack = Stack(blocks=(Block(width=width, height=height, mass=50.0),), interfaces=(Interface(restitution=r),))
+    friction = None if grip is None else Friction(static=grip, kinetic=grip)
+    stack = Stack(blocks=(Block(width=width, height=height, mass=50.0),),
+                  interfaces=(Interface(friction=friction, restitution=r),))
     motion = rocking.SinePulse(amplitude=0.4 * G, frequency=1.5)
     res = simulate_stack(stack, motion, duration=3.0, options={"gravity": G})
     assert res.summary()["impacts"] >= 3 and not res.blocks[0]["overturned"]
     expected = height / width * (1.0 - r) / (1.0 + r)
     assert res.interfaces[0]["required_friction"] == pytest.approx(expected, rel=1e-9)
     two_body = rocking.simulate(rocking.System(statue=rocking.Statue(width=width, height=height, mass=50.0,
-                                                                     restitution=r)),
+                                                                     friction=friction, restitution=r)),
                                 motion, duration=3.0, options={"gravity": G})
     assert two_body.summary()["required_top_friction"] == pytest.approx(expected, rel=1e-9)
+
+
+@pytest.mark.parametrize("slipping", [False, True])
+def test_an_impulse_is_split_along_the_face_of_the_block_it_crosses_onto(slipping):
+    """The need of an impact (``engine._impact_needs``) at a given outcome: a statue flat on a
+    pedestal tilted by Θ = 0.1 rad (clockwise, towards +x: the frame turns by
+    R(Θ) = [[cos Θ, sin Θ], [−sin Θ, cos Θ]], so the pedestal's top face runs along
+    (cos Θ, −sin Θ) with its normal (sin Θ, cos Θ)), both brought to rest from given centre
+    velocities. The impulse into the statue is m₂·(0 − v₂), split along that face and across it;
+    the one through the floor is everything's change of momentum, split along the floor. A face
+    that slips through the impact needs nothing (its friction is μk·N, not a need)."""
+    from rocking.stack import engine
+    from rocking.stack.modes import FLAT, ROCK
+    from rocking.stack.simulate import pack
+
+    m1, m2, tilt = 300.0, 100.0, 0.1
+    stack = Stack(blocks=(Block(width=0.8, height=0.5, mass=m1), Block(width=0.3, height=1.2, mass=m2)),
+                  interfaces=(Interface(), Interface(friction=Friction(static=5.0, kinetic=5.0))))
+    P, ends, anchor, z = pack(stack)
+    z = z.copy()
+    z[1] = tilt  # the pedestal rocks on its corner; the statue sits flat on it
+    v1, v2 = np.array([0.3, -0.05]), np.array([0.8, -0.6])
+    summ = np.zeros((2, engine.N_BLOCK_SUMMARY))
+    engine._impact_needs(P, ends, anchor, np.array([ROCK, FLAT], dtype=np.int64),
+                         np.array([0, 1 if slipping else 0], dtype=np.int64), z, np.zeros_like(z),
+                         np.array([v1, v2]), summ)
+    impulse = -m2 * v2
+    along = impulse @ [math.cos(tilt), -math.sin(tilt)]
+    across = impulse @ [math.sin(tilt), math.cos(tilt)]
+    assert across > 0.0
+    assert summ[1, engine.B_MU_REQ] == (0.0 if slipping else pytest.approx(abs(along) / across, rel=1e-12))
+    floor = -m1 * v1 - m2 * v2
+    assert summ[0, engine.B_MU_REQ] == pytest.approx(abs(floor[0]) / floor[1], rel=1e-12)
 
 
 def test_the_friction_a_rocking_block_needs_just_before_an_impact_is_found_in_the_step_the_impact_cuts():
@@ -1531,3 +1568,6 @@ def test_the_friction_a_rocking_block_needs_just_before_an_impact_is_found_in_th
     saved = np.nanmax(np.where(np.abs(r.theta) <= alpha, np.abs(forces["Px"]) / forces["Py"], -1.0))
     ours = simulate_stack(stack, motion, duration=4.0).summary()["interfaces"][0]["required_friction"]
     assert saved * (1.0 - 1e-12) <= ours <= saved * (1.0 + 1e-9), (ours, saved)
+    # and the two-body solver's own, whose step cut by the impact is searched up to it
+    need = r.summary()["required_top_friction"]
+    assert saved * (1.0 - 1e-12) <= need <= saved * (1.0 + 1e-9), (need, saved)
