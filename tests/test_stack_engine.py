@@ -1465,26 +1465,28 @@ def test_the_friction_a_rocking_block_needs_peaks_just_before_an_impact_as_its_s
 
 @pytest.mark.parametrize("r", [0.6, 0.3])
 @pytest.mark.parametrize("grip", [None, 5.0])
-def test_the_friction_an_impact_needs_counts_in_the_interfaces_need(r, grip):
+@pytest.mark.parametrize("law", ["coulomb", "paper"])
+def test_the_friction_an_impact_needs_counts_in_the_interfaces_need(r, grip, law):
     """A 0.2 × 1.2 m block rocking on a floor face that never slips, with θ̇⁺ = r·θ̇⁻ at its
     impacts. The impulse of an impact is the change of the block's momentum: m·(h/2)·Δθ̇ along
     the floor and m·(b/2)·(|θ̇⁺| + |θ̇⁻|) across it, so each impact needs the friction
     (h/b)·(1 − r)/(1 + r) (1.5 and 3.23 here) whatever its speed, far more than the forces
     between impacts (0.217). Until 2026-12-03 the stack engine left impacts out of an interface's
     need and reported that 0.217; the two-body solver counts them (its required_top_friction).
-    ``grip``: the face's μs = μk (None: it never slips); at 5 every impact sticks."""
+    ``grip``: the face's μs = μk (None: it never slips); at 5 every impact sticks. Both impact
+    laws give a block alone the same θ̇⁺ = r·θ̇⁻ with its base held, so the same need."""
     width, height = 0.2, 1.2
     friction = None if grip is None else Friction(static=grip, kinetic=grip)
     stack = Stack(blocks=(Block(width=width, height=height, mass=50.0),),
                   interfaces=(Interface(friction=friction, restitution=r),))
     motion = rocking.SinePulse(amplitude=0.4 * G, frequency=1.5)
-    res = simulate_stack(stack, motion, duration=3.0, options={"gravity": G})
+    res = simulate_stack(stack, motion, duration=3.0, options={"gravity": G, "impact": law})
     assert res.summary()["impacts"] >= 3 and not res.blocks[0]["overturned"]
     expected = height / width * (1.0 - r) / (1.0 + r)
     assert res.interfaces[0]["required_friction"] == pytest.approx(expected, rel=1e-9)
     two_body = rocking.simulate(rocking.System(statue=rocking.Statue(width=width, height=height, mass=50.0,
                                                                      friction=friction, restitution=r)),
-                                motion, duration=3.0, options={"gravity": G})
+                                motion, duration=3.0, options={"gravity": G, "impact": law})
     assert two_body.summary()["required_top_friction"] == pytest.approx(expected, rel=1e-9)
 
 
