@@ -1098,20 +1098,18 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                 # of the tolerance, and the interpolant's scales with it): read the event state
                 # off the 7th-order dense output.
                 dop853.dense(y, F, x_first, ye)
-                a, av = _ground(loc, te)
-                _, _, _, _, _, px, py, _, _ = evaluate_all(p, sig, s, ye[1], ye[2], ye[3], a, av)
-                top_ratio = max(top_ratio, _need(p, ye[2], px, py))
             else:
                 # Otherwise a step to the event (8th order), not the interpolant.
                 for j in range(K.shape[1]):
                     Ke[0, j] = K[0, j]
                 _step(t, y, te - t, Ke, work, ye, p, sig, s, loc, gmin, summ, False)
-                # (the stages up to the event only hint where the need peaks, as above)
-                a, av = _ground(loc, te)
-                _, _, _, _, _, px, py, _, _ = evaluate_all(p, sig, s, ye[1], ye[2], ye[3], a, av)
-                top_ratio = max(top_ratio, _need(p, ye[2], px, py))
                 for w in range(N_CHECKS):  # (as fractions of the step the dense output is of)
                     gmin[N_GUARDS + 1 + N_CHECKS + w] *= x_first
+            # The forces just before the event: the need there (the stages up to it only hint
+            # where the need peaks, as above) and the warnings' checks below.
+            a, av = _ground(loc, te)
+            udd_e, _, _, _, n_e, px_e, py_e, _, _ = evaluate_all(p, sig, s, ye[1], ye[2], ye[3], a, av)
+            top_ratio = max(top_ratio, _need(p, ye[2], px_e, py_e))
             at_rest = sig == 0 and s == 0
             if at_rest:
                 top_ratio = max(top_ratio, _rest_checks(p, y, loc, t, te, summ))
@@ -1125,8 +1123,6 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
             if x_first > 0.0:
                 # The warnings' failures up to the event (F holds the step's dense output: the
                 # event was located on it), the state just before the event included.
-                a, av = _ground(loc, te)
-                udd_e, _, _, _, n_e, px_e, py_e, _, _ = evaluate_all(p, sig, s, ye[1], ye[2], ye[3], a, av)
                 for w in range(N_CHECKS):
                     x_hi = _failure_bound(p, s, gmin, summ, w, at_rest, x_first, K, a, udd_e, n_e, px_e, py_e)
                     if x_hi <= x_first:

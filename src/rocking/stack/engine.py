@@ -1383,10 +1383,10 @@ def _project_onto_mode(P, ends, anchor, nstate, tstate, z, zd, ah, av, gravity):
 
 @njit(cache=True)
 def _centre_velocities(P, ends, anchor, z, zd):
-    """Each block's centre velocity (n × 2, m/s) at (z, ż)."""
+    """Each block's centre velocity (n × 2, m/s) and absolute rotation Θ (n, rad) at (z, ż)."""
     A, beta, C, X, Xd, th, thd = new_frame(P.shape[0])
     forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, th, thd)
-    return Xd
+    return Xd, th
 
 
 @njit(cache=True)
@@ -1401,8 +1401,7 @@ def _impact_needs(P, ends, anchor, nstate, tstate, z, zd, xd_before, summ):
     rocking: (h/b)·(1 − r)/(1 + r), 3.15 where the forces between its impacts needed 0.083
     (until 2026-12-03 the engine reported the 0.083)."""
     n = P.shape[0]
-    A, beta, C, X, Xd, th, thd = new_frame(n)
-    forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, th, thd)
+    Xd, th = _centre_velocities(P, ends, anchor, z, zd)
     # impulses are solved to 1e-9 of the momentum before the impact: below 1e-6 of it their
     # ratio is noise (a rest landing's)
     scale = 0.0
@@ -1473,7 +1472,7 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
         geo[j] = nstate[j]
     impact = (slot == G_OTHER and nstate[k] != FLAT) or (slot == G_ANCHOR and nstate[k] == OPEN)
     if impact:
-        xd_before = _centre_velocities(P, ends, anchor, z, zd)
+        xd_before = _centre_velocities(P, ends, anchor, z, zd)[0]
         e_located = _energy_of(P, ends, anchor, y, gravity)
         e_hit = anchor[k] if slot == G_ANCHOR else 1 - anchor[k]
         if e_hit != anchor[k]:
@@ -1516,7 +1515,6 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
                 nstate[k] = FLAT
             else:
                 nstate[k] = ROCK
-            tstate[k] = 0
             t_after = _kinetic_of(P, ends, anchor, z, zd)
             d_impact += snap + t_before - t_after
             n_ev = _record(events, n_ev, t, k, EVENT_IMPACT, nstate[k], tstate[k], t_before - t_after)
