@@ -1463,6 +1463,30 @@ def test_the_friction_a_rocking_block_needs_peaks_just_before_an_impact_as_its_s
     assert saved * (1.0 - 1e-12) <= need <= saved * (1.0 + 1e-9), (need, saved)
 
 
+def test_the_friction_a_face_needs_stops_counting_once_the_block_under_it_topples():
+    """A 0.30 × 0.64 m statue (208 kg) that never slips, on a 0.52 × 0.66 m plinth (55 kg) that
+    rocks and topples under two cycles of a 14 m/s² sine: once the plinth is past its tipping
+    angle atan(B/H) the two fall together, the force between them tends to zero, and |T|/N up
+    there is no design quantity (as for a block past its own angle). So the statue's face needs
+    over the whole run what it needed up to the first saved sample past that angle (the run
+    stopped there: rel 1e-6, the clipped last step's dense output differing by ~1e-10), a
+    plain coefficient. Before 2026-12-03 the need went on counting: 5.1e11 (its normal force
+    at the located overturn, 1e-12 of the weight)."""
+    stack = Stack(blocks=(Block(width=0.5248767321494551, height=0.6596542686448617, mass=54.7993174198779),
+                          Block(width=0.29761319857503443, height=0.6396475396036482, mass=207.7748361142165)),
+                  interfaces=(Interface(friction=Friction(static=0.7307695780368777, kinetic=0.3)), Interface()))
+    motion = rocking.Harmonic(amplitude=13.946795264748074, frequency=2.776607466937357, cycles=2.0, form="sin")
+    full = simulate_stack(stack, motion, duration=3.0, options={"save_dt": 1e-3})
+    assert full.blocks[0]["overturned"] and not full.blocks[1]["overturned"]
+    tipped = np.abs(full.rotation[:, 0]) >= math.atan2(0.5248767321494551, 0.6596542686448617)
+    first = int(np.argmax(tipped))
+    assert tipped[first:].all() and np.all(full.normal_state[:first, 1] > 0)  # it never comes back
+    cut = simulate_stack(stack, motion, duration=float(full.t[first]), options={"save_dt": 1e-3})
+    need = full.interfaces[1]["required_friction"]
+    assert need == pytest.approx(cut.interfaces[1]["required_friction"], rel=1e-6)
+    assert 0.5 < need < 1.0
+
+
 @pytest.mark.parametrize("r", [0.6, 0.3])
 @pytest.mark.parametrize("grip", [None, 5.0])
 @pytest.mark.parametrize("law", ["coulomb", "paper"])

@@ -1009,13 +1009,24 @@ def _track_crest(P, ends, anchor, nstate, tstate, y, t_a, t_b, slip0, summ, lam,
 
 
 @njit(cache=True, inline="always")
+def _stands(P, nstate, z, k):
+    """Whether blocks 1 … k+1 all stand: each in contact with what it stands on and none past
+    its tipping angle (|φ_j| < atan(b_j/h_j)). Above a block that tips or flies the stack falls
+    or floats with it, the forces between its blocks tend to zero, and the ratio |T|/N of an
+    interface up there is no design quantity (a statue on a toppling plinth read 5e11)."""
+    for j in range(k + 1):
+        if nstate[j] < ROCK or abs(z[3 * j + 1]) >= math.atan2(P[j, P_BU], P[j, P_HU]):
+            return False
+    return True
+
+
+@njit(cache=True, inline="always")
 def _need_of(P, nstate, tstate, y, lam, k):
     """The friction |T|/N interface k needs at the state y with contact forces lam, where it
-    counts for the summary (a stuck interface, flat or rocking, that pushes), or −1. Not once
-    the block is past its tipping angle and falling: N → 0 there."""
-    if nstate[k] >= ROCK and (tstate[k] == 0 or P[k, P_CAN_SLIP] < 0.5) and lam[3 * k + 2] > 0.0:
-        if abs(y[3 * k + 1]) < math.atan2(P[k, P_BU], P[k, P_HU]):
-            return abs(lam[3 * k]) / lam[3 * k + 2]
+    counts for the summary (a stuck interface, flat or rocking, that pushes, under a stack that
+    stands: :func:`_stands`), or −1."""
+    if (tstate[k] == 0 or P[k, P_CAN_SLIP] < 0.5) and lam[3 * k + 2] > 0.0 and _stands(P, nstate, y, k):
+        return abs(lam[3 * k]) / lam[3 * k + 2]
     return -1.0
 
 
@@ -1395,7 +1406,7 @@ def _impact_needs(P, ends, anchor, nstate, tstate, z, zd, xd_before, summ):
     impulse that crossed it is the change of momentum of the blocks above it (the floor's
     motion and gravity give none in an instant), split along the face of contact and across it.
     Counted where the interface came out of the impact stuck (or cannot slip) and in contact
-    while the block stands (as the forces: _need_of). The two-body solver counts the impulse
+    under a stack that stands (as the forces: _need_of, _stands). The two-body solver counts the impulse
     on the statue's base in its required_top_friction the same way (transitions.py). With a
     restitution below Housner's value a slender block's impact needs far more friction than its
     rocking: (h/b)·(1 − r)/(1 + r), 3.15 where the forces between its impacts needed 0.083
@@ -1411,9 +1422,7 @@ def _impact_needs(P, ends, anchor, nstate, tstate, z, zd, xd_before, summ):
     for j in range(n - 1, -1, -1):
         lx += P[j, P_MASS] * (Xd[j, 0] - xd_before[j, 0])
         ly += P[j, P_MASS] * (Xd[j, 1] - xd_before[j, 1])
-        if nstate[j] < ROCK or (tstate[j] != 0 and P[j, P_CAN_SLIP] > 0.5):
-            continue
-        if abs(z[3 * j + 1]) >= math.atan2(P[j, P_BU], P[j, P_HU]):
+        if (tstate[j] != 0 and P[j, P_CAN_SLIP] > 0.5) or not _stands(P, nstate, z, j):
             continue
         # the face: the lower block's top (an upper corner on it) or the upper block's base;
         # a block's frame turns by R(Θ) = [[c, s], [−s, c]] (kinematics.forward)
