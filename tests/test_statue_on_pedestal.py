@@ -730,6 +730,90 @@ def test_a_lift_off_that_starts_and_ends_inside_one_step_is_warned_when_it_start
     assert sum(word in w for w in r.warnings) == 1
 
 
+def test_no_lift_off_is_warned_where_the_statues_base_stays_pressed():
+    """A 0.49 × 1.93 m statue (151 kg) on a 149 kg pedestal sliding on the floor, under a
+    7.1 m/s² sine at 1.40 Hz with a vertical 7.2 m/s² sine at 6.8 Hz: it passes α at 1.18 s
+    and falls at 2.13 s, its top face slipping from 1.9877 s (μs 0.616). Its base force P_y
+    stays positive at every sample 10 µs apart from 1.95 s to the fall, by the sympy forces
+    (tests/oracles/lagrange.py): no lift-off may be warned. The mutant 9c67faeb of the
+    thirtieth round (the near-miss search of an accepted step run over twice the step, half of
+    it extrapolated) warned one at 2.08 s. The top-face slip is warned at the saved forces'
+    first failure (to the 10 µs grid)."""
+    from rocking.solver import compiled as C
+
+    statue = rk.Statue(width=0.487680039156713, height=1.9324409135614022, mass=151.41014904597316,
+                       friction=rk.Friction(static=0.6160617256323125, kinetic=0.5149742034108533))
+    pedestal = rk.Pedestal(mass=149.15388079025325, width=0.7405542397054135, height=0.17199412148118165,
+                           friction=rk.Friction(static=0.5173433852746537, kinetic=0.47510870364512237))
+    motion = _SineWithVerticalSine(amplitude=7.10681455501137, frequency=1.3977521523812648, cycles=1, form="sin",
+                                   vertical_amplitude=7.156358398838781, vertical_frequency=6.791903118693617)
+    r = rk.simulate(rk.System(statue=statue, pedestal=pedestal), motion, duration=3.715434419683319,
+                    options=rk.Options(save_dt=1e-5))
+    assert r.summary()["overturned"]
+    params = energy.lagrange_params(r.system, 9.80665)
+    names = {0: "stick-rest", 1: "stick-rock", 2: "slide-rest", 3: "slide-rock"}
+    pressed = 0
+    for i in np.flatnonzero((r.t > 1.95) & (np.abs(r.theta) < 1.5)):
+        code = int(r.regime[i])
+        s = int(np.sign(r.theta[i])) if code & 1 else None
+        sigma = int(np.sign(r.u_dot[i])) if code & 2 else None
+        if s == 0 or sigma == 0:
+            continue
+        *_, py = lagrange.accelerations(names[code], params, r.state[i], float(motion.acceleration(r.t[i])),
+                                        float(motion.vertical_acceleration(r.t[i])), s=s, sigma=sigma)
+        assert py > 0.0, r.t[i]
+        pressed += 1
+    assert pressed > 15000
+    assert math.isnan(r.raw_summary[C.S_PY_NONPOSITIVE])
+    assert not any("would lift off" in w for w in r.warnings)
+    forces = r.contact_forces()
+    slips = np.flatnonzero(forces["top_friction_ratio"] > statue.friction.mu_s)
+    assert r.t[slips[0] - 1] < r.summary()["top_slip_time"] <= r.t[slips[0]]
+
+
+def test_an_uplift_just_before_the_pedestal_jumps_is_warned_when_it_happens():
+    """A 0.16 × 1.08 m statue (188 kg) rocking on a light 36 kg pedestal 0.46 × 0.30 m, under a
+    3.3 m/s² sine at 0.72 Hz with a vertical 8.9 m/s² sine at 3.7 Hz. As the floor's normal
+    force N falls to zero at 0.7286 s the pressure centre x_N = (s·b·P_y − h₁P_x −
+    ½h₁m₁(a + ü))/N (the pedestal's moment balance about its base centre, derivation §3.5)
+    runs off the base: 0.3 ms before N = 0 the pedestal uplifts. Judged here from the sympy
+    forces (tests/oracles/lagrange.py) every 10 µs, the uplift warning must come between the
+    last sample inside the base and the first outside it (or past N = 0 with a moment). Until
+    2026-12-03 the check read x_N as undefined where N ≤ 0, so a step that ended past the jump
+    saw nothing, and the uplift was warned at 0.9659 s."""
+    statue = rk.Statue(width=0.1602306940562029, height=1.0840003042417525, mass=187.59906755482473,
+                       friction=rk.Friction(static=1.1727550216908469, kinetic=0.984751003909859))
+    pedestal = rk.Pedestal(mass=36.05375407384685, width=0.45553087005102344, height=0.2998643197923171,
+                           friction=rk.Friction(static=0.5361111213104793, kinetic=0.3507974730333762))
+    motion = _SineWithVerticalSine(amplitude=3.3330909598123837, frequency=0.7217948025130159, cycles=2,
+                                   form="sin", vertical_amplitude=8.89076670043662,
+                                   vertical_frequency=3.6828139989051816)
+    r = rk.simulate(rk.System(statue=statue, pedestal=pedestal), motion, duration=0.8,
+                    options=rk.Options(save_dt=1e-5))
+    params = energy.lagrange_params(r.system, 9.80665)
+    b, h1, m1 = 0.5 * statue.width, pedestal.height, pedestal.mass
+    names = {0: "stick-rest", 1: "stick-rock", 2: "slide-rest", 3: "slide-rock"}
+    first = None
+    for i in np.flatnonzero(r.t <= 0.8):
+        code = int(r.regime[i])
+        if not code & 1:
+            continue  # (uplift is watched while the statue rocks)
+        s = int(np.sign(r.theta[i]))
+        sigma = int(np.sign(r.u_dot[i])) if code & 2 else None
+        if s == 0 or sigma == 0:
+            continue
+        a = float(motion.acceleration(r.t[i]))
+        udd, _, n, _, px, py = lagrange.accelerations(names[code], params, r.state[i], a,
+                                                      float(motion.vertical_acceleration(r.t[i])), s=s, sigma=sigma)
+        moment = s * b * py - h1 * px - 0.5 * h1 * m1 * (a + udd)
+        if (n > 0 and abs(moment / n) > 0.5 * pedestal.width) or (n <= 0 and moment != 0):
+            first = i
+            break
+    assert first is not None and 0.7280 < r.t[first] < 0.7286
+    warned = r.summary()["pedestal_uplift_time"]
+    assert r.t[first - 1] < warned <= r.t[first] + 1e-12
+
+
 @pytest.mark.parametrize("kind", ["cosine", "ricker", "ricker-fast", "linear-with-vertical"])
 def test_the_first_failure_at_rest_is_the_first_crossing_on_any_stretch(kind):
     """The search behind both warnings at rest (compiled._first_failure), on 400 random stretches

@@ -155,11 +155,21 @@ def evaluate_all(p, sig, s, u_dot, theta, theta_dot, a, av):
 @njit(cache=True)
 def pressure_centre(p, s, a, udd, px, py, n):
     """x_N, m: where the floor's normal force acts under the pedestal (moment balance of the
-    pedestal about its base centre); NaN when the pedestal height is not given."""
+    pedestal about its base centre); NaN when the pedestal height is not given or N ≤ 0."""
     if p[PED_HEIGHT] <= 0.0 or n <= 0.0:
         return math.nan
+    return pressure_moment(p, s, a, udd, px, py) / n
+
+
+@njit(cache=True)
+def pressure_moment(p, s, a, udd, px, py):
+    """N·x_N, N·m: the moment about the pedestal's base centre that the floor's normal force
+    must balance (the numerator of :func:`pressure_centre`); 0 when the pedestal height is not
+    given (no moment known)."""
     h1 = p[PED_HEIGHT]
-    return (s * p[B] * py - h1 * px - 0.5 * h1 * p[M1] * (a + udd)) / n
+    if h1 <= 0.0:
+        return 0.0
+    return s * p[B] * py - h1 * px - 0.5 * h1 * p[M1] * (a + udd)
 
 
 @njit(cache=True)

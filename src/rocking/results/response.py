@@ -294,21 +294,23 @@ class Response:
         """Forces at the saved times, N: the floor's normal force ``N`` and friction ``F`` on the
         body that slides, the force ``Px``, ``Py`` on the statue's base, the friction ratio
         |Px|/Py the statue's base needs, and the floor pressure centre ``x_N`` under the pedestal
-        (m, NaN without pedestal height)."""
-        from ..models.dynamics import evaluate_all, pressure_centre
+        (m, NaN without pedestal height or where N ≤ 0) with ``N_x_N``, the moment about the
+        pedestal's base centre that N balances (N·m, 0 without pedestal height)."""
+        from ..models.dynamics import evaluate_all, pressure_centre, pressure_moment
 
         p = self.parameters
         sig, s = self._regime_signs()
         a_g = self.floor_acceleration
         a_v = self.motion.vertical_acceleration(self.t)
         n = self.t.size
-        out = {k: np.empty(n) for k in ("F", "N", "Px", "Py", "x_N")}
+        out = {k: np.empty(n) for k in ("F", "N", "Px", "Py", "x_N", "N_x_N")}
         for i in range(n):
             udd, _, _, f, nn, px, py, _, _ = evaluate_all(
                 p, int(sig[i]), int(s[i]), self.u_dot[i], self.theta[i], self.theta_dot[i], a_g[i], a_v[i]
             )
             out["F"][i], out["N"][i], out["Px"][i], out["Py"][i] = f, nn, px, py
             out["x_N"][i] = pressure_centre(p, int(s[i]), a_g[i], udd, px, py, nn) if s[i] else np.nan
+            out["N_x_N"][i] = pressure_moment(p, int(s[i]), a_g[i], udd, px, py) if s[i] else 0.0
         with np.errstate(divide="ignore", invalid="ignore"):
             out["top_friction_ratio"] = np.where(out["Py"] > 0, np.abs(out["Px"]) / out["Py"], np.inf)
         return out
@@ -329,7 +331,10 @@ class Response:
             checks["statue slips on the pedestal"] = forces["top_friction_ratio"] > top.mu_s
         ped = self.system.pedestal
         if ped is not None and ped.width is not None and ped.height is not None:
-            checks["pedestal uplift"] = np.abs(np.nan_to_num(forces["x_N"])) > 0.5 * ped.width
+            # where N ≤ 0 the pressure centre has left the base if the pedestal carries a moment:
+            # x_N = moment/N grows without bound as N falls to zero (as the solver's check)
+            left = np.abs(np.nan_to_num(forces["x_N"])) > 0.5 * ped.width
+            checks["pedestal uplift"] = left | ((forces["N"] <= 0) & (forces["N_x_N"] != 0.0))
         out = []
         for name, flag in checks.items():
             flag = flag & rocking

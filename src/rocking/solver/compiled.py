@@ -39,6 +39,7 @@ from ..models.dynamics import (
     mechanical_energy,
     pedestal_half_width,
     pressure_centre,
+    pressure_moment,
 )
 from ..models.transitions import (
     EV_BREAKPOINT,
@@ -168,7 +169,11 @@ def _check_margin(p, s, a, udd, n_full, px, py, which):
     """How far check ``which`` (see N_CHECKS) is from failing at a state whose floor
     acceleration a, ü and forces (N, P_x, P_y) are known, in the check's own units:
     μs,top·P_y − |P_x| (N), b₁ − |x_N| (m; derivation §3.5), N and P_y (N). +inf where the
-    check cannot fail: no top friction given, no pedestal width and height, x_N undefined."""
+    check cannot fail: no top friction given, no pedestal width and height. Where N ≤ 0 the
+    uplift has happened if the pedestal carries a moment (−inf): x_N = moment/N leaves the base
+    as N falls to zero, so the pressure centre crosses b₁ just before the floor force vanishes
+    (until 2026-12-03 the margin was +inf there, and an uplift 0.3 ms before a jump, in a step
+    that ended past the jump, was warned 0.24 s late, at a later crossing)."""
     if which == 0:
         return p[MU_TOP] * py - abs(px) if p[MU_TOP] >= 0.0 else math.inf
     if which == 1:
@@ -176,7 +181,9 @@ def _check_margin(p, s, a, udd, n_full, px, py, which):
         if b1 <= 0.0:
             return math.inf
         xn = pressure_centre(p, s, a, udd, px, py, n_full)
-        return b1 - abs(xn) if math.isfinite(xn) else math.inf
+        if math.isfinite(xn):
+            return b1 - abs(xn)
+        return -math.inf if n_full <= 0.0 and pressure_moment(p, s, a, udd, px, py) != 0.0 else math.inf
     if which == 2:
         return n_full
     return py
@@ -635,6 +642,8 @@ def _rest_point(p, y, loc, t):
         xn = pressure_centre(p, 0, a, 0.0, px, py, n_full)
         if math.isfinite(xn):
             uplift = abs(xn) - b1
+        elif n_full <= 0.0 and pressure_moment(p, 0, a, 0.0, px, py) != 0.0:
+            uplift = math.inf  # (x_N left the base as N fell to zero: _check_margin)
     return ratio, slip, uplift, -n_full, -py
 
 
