@@ -313,3 +313,35 @@ def test_the_two_body_solvers_need_is_the_peak_of_its_own_saved_forces_and_impac
     largest = max([saved] + [i.friction_needed for i in res.impacts])
     need = res.summary()["required_top_friction"]
     assert largest * (1.0 - 1e-12) <= need <= largest * (1.0 + 3e-9), (need, largest, saved)
+
+
+# Random blocks of bench-style scans (2026-12-03) that rock, pass α and topple; the mutants of
+# the thirtieth round read their needs wrong: 591a8cf9 (no search in a step an event cuts when
+# the event's own state is below the largest need so far) 0.314218 for 0.314476, b8760172 (the
+# need at a step's end read with θ̇ for θ, so counted past α) 0.2711 for 0.2514.
+_TOPPLING_NEEDS = [
+    (0.596442017416607, 2.4248671712088328, 76.7952863117053, 1.0862340101410042, 0.859932046912334,
+     5.406301511782829, 1.477459067775039, 3.0, 5.030513105529084),
+    (0.24626323349450022, 1.1400462979934902, 66.72786628122417, 0.5318054221525318, 0.4521990890617259,
+     3.975630803382944, 0.829503874180685, 2.0, 5.411079757735229),
+]
+
+
+@pytest.mark.parametrize("case", range(len(_TOPPLING_NEEDS)))
+def test_the_need_of_a_block_that_topples_is_the_peak_of_its_saved_forces_while_it_stands(case):
+    """A block alone that rocks, passes α and falls (sliding at the end, as it topples):
+    ``required_top_friction`` counts while |θ| ≤ α only, so it is the largest of |P_x|/P_y of the
+    saved forces every 10 µs while |θ| ≤ α and of the impacts' impulse ratios, within 1e-12 below
+    and 3e-9 above (as in the test above: the grid reads a peak low by its curvature over 5 µs;
+    measured 3e-10 and 5e-11 here)."""
+    width, height, mass, mu_s, mu_k, amp, f, cycles, duration = _TOPPLING_NEEDS[case]
+    statue = rk.Statue(width=width, height=height, mass=mass, friction=rk.Friction(static=mu_s, kinetic=mu_k))
+    motion = rk.Harmonic(amplitude=amp, frequency=f, cycles=cycles, form="sin")
+    res = rk.simulate(rk.System(statue=statue), motion, duration=duration, options=dict(save_dt=1e-5))
+    assert res.summary()["overturned"] and res.exceeded_alpha_time is not None
+    forces = res.contact_forces()
+    stands = (np.abs(res.theta) <= res.alpha) & (forces["Py"] > 0)
+    saved = np.max(np.where(stands, np.abs(forces["Px"]) / np.where(stands, forces["Py"], 1.0), -1.0))
+    largest = max([saved] + [i.friction_needed for i in res.impacts])
+    need = res.summary()["required_top_friction"]
+    assert largest * (1.0 - 1e-12) <= need <= largest * (1.0 + 3e-9), (need, largest, saved)
