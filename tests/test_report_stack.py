@@ -5,6 +5,7 @@ StackResponse's summary, a table of each, and every block in the figures."""
 from __future__ import annotations
 
 import copy
+import math
 import re
 import tomllib
 from html import escape, unescape
@@ -258,3 +259,36 @@ def test_clearance_checks_the_block_on_the_floor(standing, tmp_path):
     tight = {c.name: c for c in build_stack_content(response, config, clearance=0.5 * peak).checks}[name]
     roomy = {c.name: c for c in build_stack_content(response, config, clearance=2 * peak).checks}[name]
     assert (tight.result, roomy.result) == (FAIL, PASS)
+
+
+def test_an_unbounded_need_is_worded_as_such_not_as_a_coefficient():
+    """A slender statue (0.42 × 1.70 m, 226 kg) that never slips, on a plinth that rocks until
+    it topples: the statue's base unloads to a lift-off at 0.708 s while it still carries a
+    tangential force, so the friction it needs grows without bound, and the solver's last state
+    before the lift-off read |T|/N ≈ 5e11. That number is no coefficient anyone can specify:
+    the report's check and its interface table say "> 100 (unbounded)" (as the terminal and the
+    web page do, through rocking.results.wording.need_text); the JSON keeps the number."""
+    from rocking.results.wording import UNBOUNDED_NEED, need_text
+
+    config = {
+        "blocks": [{"name": "plinth", "width": 0.6546373071849749, "height": 0.8969072345851428,
+                    "mass": 136.10363781958782},
+                   {"name": "statue", "width": 0.42353994220485064, "height": 1.7000999809993305,
+                    "mass": 225.65540010084422}],
+        "interfaces": [{"friction": {"static": 0.9524417806293648, "kinetic": 0.3}}, {}],
+        "motion": {"kind": "harmonic", "amplitude": 9.537306982161581, "frequency": 0.5514720673787925,
+                   "cycles": 1, "form": "sin"},
+        "simulation": {},
+    }
+    config, response = run_response(config)
+    s = response.summary()
+    assert s["blocks"][1]["lifted_off_time"] == pytest.approx(0.708, abs=1e-3)
+    assert s["interfaces"][1]["required_friction"] > UNBOUNDED_NEED
+    content = build_stack_content(response, config)
+    check = {c.name: c for c in content.checks}["friction plinth–statue needs while it sticks ≤ its μs"]
+    assert (check.value, check.result) == ("> 100 (unbounded)", NOT_CHECKED)
+    table = next(t for t in content.tables if t.heading.startswith("Interfaces"))
+    assert table.rows[1][1] == "> 100 (unbounded)"
+    assert table.rows[0][1] == f"{s['interfaces'][0]['required_friction']:.3f}"
+    assert [need_text(x) for x in (0.41234, UNBOUNDED_NEED, 100.0001, None, math.nan)] == [
+        "0.412", "100.000", "> 100 (unbounded)", "—", "—"]

@@ -11,6 +11,7 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..constants import STANDARD_GRAVITY
+from ..results.wording import need_text
 
 __all__ = ["outcome_markup", "record_info", "record_table", "summary_table"]
 
@@ -60,7 +61,7 @@ def summary_table(summary: Mapping[str, Any], *, title: str | None = None) -> Ta
     table.add_row("impacts", str(s["impacts"]))
     table.add_row("rocking started", _time(s["first_rocking_time"]))
     table.add_row("sliding started", _time(s["first_sliding_time"]))
-    table.add_row("friction needed under statue", _num(s["required_top_friction"], ".3f"))
+    table.add_row("friction needed under statue", need_text(s["required_top_friction"]))
     if "impact_floor_friction_needed" in s:
         table.add_row("friction needed at impacts", _num(s["impact_floor_friction_needed"], ".3f"))
     if "end_time" in s:

@@ -21,6 +21,7 @@ from rich.markup import escape
 from rich.table import Table
 
 from ..io.output import summary_json
+from ..results.wording import need_text
 from ..io.stack_output import STACK_OUTPUT_FILES, check_stack_output_space, fall_text, write_stack_outputs
 from .render import _num, _time, outcome_markup
 
@@ -75,7 +76,7 @@ def stack_tables(summary: Mapping[str, Any], *, frictions: list[float | None] | 
         given = "—"
         if frictions is not None:
             given = "never slips" if frictions[k] is None else _num(frictions[k], ".3g")
-        interfaces.add_row(escape(f["name"]), _num(f["required_friction"], ".3f"), given, _mm(f["slip_path"]),
+        interfaces.add_row(escape(f["name"]), need_text(f["required_friction"]), given, _mm(f["slip_path"]),
                            str(f.get("impacts", "—")))
     return Group(head, blocks, interfaces)
 

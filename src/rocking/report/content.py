@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from ..models.regimes import Regime
+from ..results.wording import need_text
 
 Rows = list[tuple[str, str]]
 
@@ -330,7 +331,7 @@ def key_figures(response) -> Rows:
         rows.append(("time at rest / rocking / sliding / sliding and rocking",
                      " / ".join(f"{shares[r]:.2f} s" for r in Regime)))
     rows += [
-        ("friction the statue's base needs, max |Fx|/Fy", _g(s["required_top_friction"], 4)),
+        ("friction the statue's base needs, max |Fx|/Fy", need_text(s["required_top_friction"], ".4g")),
         ("floor friction needed at impacts, max |Fx|/Fy", _g(s["impact_floor_friction_needed"], 4)),
         ("input work of the floor", _g(led["input_work"], 4, "J")),
         ("energy dissipated by friction", _g(led["friction_dissipation"], 4, "J")),
@@ -419,16 +420,16 @@ def _top_friction_check(response, s: Mapping[str, Any]) -> Check | None:
     if system.pedestal is None:
         if system.statue.friction is not None:
             return None  # the statue slides on the floor when it must: simulated, nothing to check
-        return Check("friction the statue's base needs on the floor, |Fx|/Fy", f"{need:.3f}",
+        return Check("friction the statue's base needs on the floor, |Fx|/Fy", need_text(need),
                      "none given (assumed never to slide)", NOT_CHECKED)
     name = "friction the statue's base needs ≤ μs of the pedestal's top face"
     top = system.top_friction
     if top is None:
-        return Check(name, f"{need:.3f}", "no μs given for the top face", NOT_CHECKED)
+        return Check(name, need_text(need), "no μs given for the top face", NOT_CHECKED)
     if need <= top.mu_s:
-        return Check(name, f"{need:.3f}", f"μs = {top.mu_s:g}", PASS)
-    return Check(name, f"{need:.3f}", f"μs = {top.mu_s:g}", FAIL, warning=(
-        f"The statue's base needs a friction coefficient of {need:.3f}, more than the top face's "
+        return Check(name, need_text(need), f"μs = {top.mu_s:g}", PASS)
+    return Check(name, need_text(need), f"μs = {top.mu_s:g}", FAIL, warning=(
+        f"The statue's base needs a friction coefficient of {need_text(need)}, more than the top face's "
         f"μs = {top.mu_s:g}: the statue would slip on the pedestal, which this model does not simulate."))
 
 

@@ -13,6 +13,7 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
+from ..results.wording import need_text
 from .content import (
     FAIL,
     NOT_APPLICABLE,
@@ -181,14 +182,14 @@ def _friction_check(response: Any, k: int, summary_interface: Mapping[str, Any])
     name = f"friction {summary_interface['name']} needs while it sticks ≤ its μs"
     fr = stack.interfaces[k].friction
     if fr is None:
-        return Check(name, f"{need:.3f}", "no μs given (assumed never to slip)", NOT_CHECKED)
+        return Check(name, need_text(need), "no μs given (assumed never to slip)", NOT_CHECKED)
     limit = f"μs = {fr.mu_s:g}"
     if need <= fr.mu_s * (1 + _FRICTION_TOLERANCE):
         slip = float(summary_interface["slip_path"])
-        value = f"{need:.3f}" + (f" (it slipped {_mm(slip)}: simulated)" if slip > 0 else "")
+        value = need_text(need) + (f" (it slipped {_mm(slip)}: simulated)" if slip > 0 else "")
         return Check(name, value, limit, PASS)
-    return Check(name, f"{need:.3f}", limit, FAIL, warning=(
-        f"Interface {summary_interface['name']} needed a friction coefficient of {need:.3f}, more than its "
+    return Check(name, need_text(need), limit, FAIL, warning=(
+        f"Interface {summary_interface['name']} needed a friction coefficient of {need_text(need)}, more than its "
         f"μs = {fr.mu_s:g}, without slipping."))
 
 
@@ -272,7 +273,7 @@ def _interface_table(response: Any, summary: Mapping[str, Any]) -> DataTable:
     rows = []
     for k, f in enumerate(summary["interfaces"]):
         fr = response.stack.interfaces[k].friction
-        rows.append((f["name"], f"{f['required_friction']:.3f}", "never slips" if fr is None else f"{fr.mu_s:g}",
+        rows.append((f["name"], need_text(f["required_friction"]), "never slips" if fr is None else f"{fr.mu_s:g}",
                      _two_decimals(1e3 * f["slip_path"]), str(f["impacts"])))
     return DataTable("Interfaces, from the floor up", ("interface", "friction needed", "μs given",
                                                        "slip path (mm)", "impacts"),

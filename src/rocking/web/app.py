@@ -31,6 +31,7 @@ from ..constants import STANDARD_GRAVITY
 from ..io.config import ConfigError, load_config
 from ..io.records import RecordError, UnitsConflictError, bundled_records, read_record
 from ..io.stack_output import fall_text
+from ..results.wording import need_text
 from . import tasks
 from .jobs import DONE, JobRunner
 from .templates import TEMPLATES
@@ -596,7 +597,7 @@ def summary_rows(s: Mapping[str, Any]) -> list[tuple[str, str, str, str]]:
         ("impacts", "impacts", str(s["impacts"])),
         ("first_rocking_time", "rocking started", _t(s["first_rocking_time"])),
         ("first_sliding_time", "sliding started", _t(s["first_sliding_time"])),
-        ("required_top_friction", "friction needed under the statue", _num(s["required_top_friction"], ".3f")),
+        ("required_top_friction", "friction needed under the statue", need_text(s["required_top_friction"])),
         ("impact_floor_friction_needed", "friction needed at impacts", _num(s.get("impact_floor_friction_needed"), ".3f")),
         ("end_time", "simulated until", _t(s.get("end_time"))),
         ("status", "status", str(s.get("status"))),
@@ -664,7 +665,7 @@ def interface_rows(s: Mapping[str, Any], frictions: list[float | None]) -> list[
     for f, mu in zip(s["interfaces"], frictions):
         rows.append({
             "name": f["name"],
-            "required_friction": _num(f["required_friction"], ".3f"),
+            "required_friction": need_text(f["required_friction"]),
             "given": "never slips" if mu is None else _num(mu, ".3g"),
             "slip_path": _mm(f["slip_path"]),
             "impacts": str(f.get("impacts", "—")),
