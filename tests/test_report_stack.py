@@ -266,8 +266,9 @@ def test_an_unbounded_need_is_worded_as_such_not_as_a_coefficient():
     it topples: the statue's base unloads to a lift-off at 0.708 s while it still carries a
     tangential force, so the friction it needs grows without bound, and the solver's last state
     before the lift-off read |T|/N ≈ 5e11. That number is no coefficient anyone can specify:
-    the report's check and its interface table say "> 100 (unbounded)" (as the terminal and the
-    web page do, through rocking.results.wording.need_text); the JSON keeps the number."""
+    the report's check and its interface table say "> 100 (unbounded)" (as the terminal does,
+    and the web page's narrow column "unbounded", through rocking.results.wording.need_text);
+    the JSON keeps the number."""
     from rocking.results.wording import UNBOUNDED_NEED, need_text
 
     config = {
@@ -292,3 +293,4 @@ def test_an_unbounded_need_is_worded_as_such_not_as_a_coefficient():
     assert table.rows[0][1] == f"{s['interfaces'][0]['required_friction']:.3f}"
     assert [need_text(x) for x in (0.41234, UNBOUNDED_NEED, 100.0001, None, math.nan)] == [
         "0.412", "100.000", "> 100 (unbounded)", "—", "—"]
+    assert need_text(5e11, short=True) == "unbounded"  # (the web page's interface column, 390 px wide)

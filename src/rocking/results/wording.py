@@ -13,11 +13,12 @@ import math
 UNBOUNDED_NEED = 100.0
 
 
-def need_text(need: float | None, fmt: str = ".3f") -> str:
+def need_text(need: float | None, fmt: str = ".3f", *, short: bool = False) -> str:
     """A required friction coefficient for people: formatted with ``fmt`` (``"0.412"``), ``"—"``
-    if None or NaN, and ``"> 100 (unbounded)"`` above :data:`UNBOUNDED_NEED`."""
+    if None or NaN, and ``"> 100 (unbounded)"`` above :data:`UNBOUNDED_NEED` (``"unbounded"``
+    with ``short``, for a narrow table column)."""
     if need is None or (isinstance(need, float) and math.isnan(need)):
         return "—"
     if need > UNBOUNDED_NEED:
-        return f"> {UNBOUNDED_NEED:.0f} (unbounded)"
+        return "unbounded" if short else f"> {UNBOUNDED_NEED:.0f} (unbounded)"
     return format(need, fmt)

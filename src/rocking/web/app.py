@@ -665,7 +665,7 @@ def interface_rows(s: Mapping[str, Any], frictions: list[float | None]) -> list[
     for f, mu in zip(s["interfaces"], frictions):
         rows.append({
             "name": f["name"],
-            "required_friction": need_text(f["required_friction"]),
+            "required_friction": need_text(f["required_friction"], short=True),  # (a phone's column)
             "given": "never slips" if mu is None else _num(mu, ".3g"),
             "slip_path": _mm(f["slip_path"]),
             "impacts": str(f.get("impacts", "—")),
