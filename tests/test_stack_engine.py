@@ -1565,3 +1565,14 @@ def test_the_friction_a_rocking_block_needs_just_before_an_impact_is_found_in_th
     # and the two-body solver's own, whose step cut by the impact is searched up to it
     need = r.summary()["required_top_friction"]
     assert saved * (1.0 - 1e-12) <= need <= saved * (1.0 + 1e-9), (need, saved)
+
+
+def test_a_light_block_at_rest_needs_the_floors_peak_over_g():
+    """A 50 g block (0.1 × 0.4 m, its weight 0.49 N) at rest on a face that never slips, under a
+    1 m/s² sine at 2 Hz, below its uplift (g·b/h = 2.45 m/s²): the friction its face needs is the
+    floor's peak over g, 1/9.80665, to 1e-12, however small its normal force (a mutant that
+    counted only normal forces above 1 N read 0)."""
+    stack = Stack(blocks=(Block(width=0.1, height=0.4, mass=0.05),), interfaces=(Interface(),))
+    r = simulate_stack(stack, rocking.Harmonic(amplitude=1.0, frequency=2.0, cycles=2.0, form="sin"), duration=1.5)
+    assert r.blocks[0]["first_rocking_time"] is None
+    assert r.interfaces[0]["required_friction"] == pytest.approx(1.0 / 9.80665, rel=1e-12)

@@ -43,6 +43,7 @@ import numpy as np
 
 from ..contact.friction import Friction
 from ..models.bodies import System
+from ..results.wording import need_text
 from ..simulation import Options
 from ..stack.model import Block, Interface, Stack
 from .batch import replace_at
@@ -469,7 +470,8 @@ def choose_design(
         if miss_residual[ij]:
             out.append(f"its residual sliding {_mm(residual[ij])} exceeds the {_mm_limit(residual_limit)} limit")
         if miss_top[ij]:
-            out.append(f"the statue–pedestal face must supply μ = {top[ij]:.3g}, more than {top_friction_limit:.3g}")
+            out.append(f"the statue–pedestal face must supply μ = {need_text(top[ij], '.3g')}, more than "
+                       f"{top_friction_limit:.3g}")
         if miss_top_slide[ij]:
             out.append(top_slide_miss(ij))
         return out
