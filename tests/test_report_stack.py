@@ -294,3 +294,7 @@ def test_an_unbounded_need_is_worded_as_such_not_as_a_coefficient():
     assert [need_text(x) for x in (0.41234, UNBOUNDED_NEED, 100.0001, None, math.nan)] == [
         "0.412", "100.000", "> 100 (unbounded)", "—", "—"]
     assert need_text(5e11, short=True) == "unbounded"  # (the web page's interface column, 390 px wide)
+    from rocking.web.app import interface_rows
+
+    assert [row["required_friction"] for row in interface_rows(s, [0.9524417806293648, None])] == [
+        f"{s['interfaces'][0]['required_friction']:.3f}", "unbounded"]

@@ -812,6 +812,8 @@ def test_an_uplift_just_before_the_pedestal_jumps_is_warned_when_it_happens():
     assert first is not None and 0.7280 < r.t[first] < 0.7286
     warned = r.summary()["pedestal_uplift_time"]
     assert r.t[first - 1] < warned <= r.t[first] + 1e-12
+    # Response.violations() judges the saved samples by the same rule
+    assert min(t0 for name, t0, _ in r.violations() if name == "pedestal uplift") == r.t[first]
 
 
 @pytest.mark.parametrize("kind", ["cosine", "ricker", "ricker-fast", "linear-with-vertical"])

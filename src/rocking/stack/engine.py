@@ -1015,7 +1015,11 @@ def _stands(P, nstate, z, k):
     or floats with it, the forces between its blocks tend to zero, and the ratio |T|/N of an
     interface up there is no design quantity (a statue on a toppling plinth read 5e11)."""
     for j in range(k + 1):
-        if nstate[j] < ROCK or abs(z[3 * j + 1]) >= math.atan2(P[j, P_BU], P[j, P_HU]):
+        if nstate[j] < ROCK:
+            return False
+        # (a flat interface holds φ at exactly 0: no arctangent on the hot path)
+        phi = z[3 * j + 1]
+        if phi != 0.0 and abs(phi) >= math.atan2(P[j, P_BU], P[j, P_HU]):
             return False
     return True
 
