@@ -806,6 +806,34 @@ def test_tracking_books_the_peaks_the_first_times_and_the_friction_needed():
     assert booked[0] == ratios[0] and ratios[0] > 0.05 and booked[1] == 0.0 and ratios[1] > 0.05
 
 
+
+def test_a_stack_stands_while_each_block_up_to_the_interface_touches_and_is_within_its_angle():
+    """``_stands(P, nstate, y, k)``, the rule under which interface k's need counts: blocks 1 …
+    k+1 each in contact with what they stand on (not OPEN) and turned less than atan(b/h), read
+    from φ_j = y[3j + 1] alone. Every other component of the state (slides, lifts, the rates, the
+    ledger) is random and large here, and so are the angles of the blocks above k, which must
+    not matter. Exact: comparisons only (the angle is compared at 0.99, 1 and 1.01 of atan(b/h),
+    computed here from the blocks' sizes)."""
+    sizes = ((1.2, 0.4), (0.4, 1.4), (0.2, 0.45))
+    stack = Stack(blocks=tuple(Block(width=w, height=h, mass=10.0) for w, h in sizes),
+                  interfaces=(Interface(), Interface(), Interface()))
+    P, *_ = pack(stack)
+    alpha = [math.atan2(w / 2, h / 2) for w, h in sizes]
+    rng = np.random.default_rng(12)
+    seen = set()
+    for _ in range(300):
+        y = rng.uniform(-10.0, 10.0, 6 * 3 + 2)
+        nstate = rng.choice([OPEN, ROCK, FLAT], size=3, p=[0.15, 0.6, 0.25])
+        for j in range(3):
+            y[3 * j + 1] = 0.0 if nstate[j] == FLAT else rng.choice([-1, 1]) * alpha[j] * rng.choice(
+                [rng.uniform(0.0, 0.99), 0.99, 1.0, 1.01, rng.uniform(1.01, 5.0)])
+        for k in range(3):
+            want = all(nstate[j] != OPEN and abs(y[3 * j + 1]) < alpha[j] for j in range(k + 1))
+            assert E._stands(P, nstate, y, k) == want, (k, nstate, y[1::3][:3])
+            seen.add((k, want))
+    assert seen == {(k, w) for k in range(3) for w in (True, False)}
+
+
 def _block_in_flight():
     """A single block in flight (OPEN): its anchor's guard is its gap d, the state's component 2."""
     P, ends, anchor, z = pack(Stack(blocks=(Block(width=0.4, height=0.8, mass=30.0),), interfaces=(Interface(),)))

@@ -9,7 +9,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from .constants import STANDARD_GRAVITY
-from .excitation.base import AbstractMotion
+from .excitation.base import AbstractMotion, Signal, signal_breakpoints
 from .models.bodies import System
 from .models.parameters import pack
 from .results.response import Response, split_saved_codes
@@ -169,8 +169,20 @@ def _check_memory(t_end: float, save_dt: float, save: bool, options: Options, du
         )
 
 
-def _breakpoints(motion: AbstractMotion, t_end: float) -> np.ndarray:
+def _breakpoints(motion: AbstractMotion, t_end: float, signals: tuple[Signal, ...] = ()) -> np.ndarray:
+    """The times inside (0, t_end) where a step must end (s, increasing): the motion's own list
+    and every jump or kink of ``signals`` (its horizontal and vertical signals). A vertical pulse
+    left out of a user's list had its end straddled by the steps: a block that a vertical lift had
+    kept stuck then never slipped when it ended (2026-12-03)."""
     bp = np.asarray(motion.breakpoints, dtype=float)
+    parts = [bp]
+    for sig in signals:
+        own = signal_breakpoints(sig)
+        # a record's samples are its list already: skip the merge (a sort of 10⁴ samples)
+        if own.size and not (own.shape == bp.shape and np.array_equal(own, bp)):
+            parts.append(own)
+    if len(parts) > 1:
+        bp = np.concatenate(parts)
     bp = bp[(bp > 0.0) & (bp < t_end)]
     if bp.size > 1 and not np.all(bp[1:] > bp[:-1]):  # a record's sample times already are
         bp = np.unique(bp)
@@ -231,7 +243,7 @@ def prepare(
         p,
         (sig_h.kind, sig_h.params, sig_h.time, sig_h.values),
         (sig_v.kind, sig_v.params, sig_v.time, sig_v.values),
-        _breakpoints(motion, t_end),
+        _breakpoints(motion, t_end, (sig_h, sig_v)),
         0.0,
         t_end,
         y0,

@@ -40,6 +40,18 @@ class Signal(NamedTuple):
 ZERO_SIGNAL = Signal(KIND_ZERO, np.zeros(N_PARAMS), np.zeros(0), np.zeros(0))
 
 
+def signal_breakpoints(signal: Signal) -> np.ndarray:
+    """Times (s) where ``signal`` may jump or kink: a sampled signal's sample times, the two ends
+    [0, t_end] of an analytic one's support, nothing for no motion. The solvers stop at these
+    whatever a motion's ``breakpoints`` lists, so that a vertical component's jump (a user's
+    motion whose list names the horizontal one's only) is never straddled by a step."""
+    if signal.kind == KIND_ZERO:
+        return np.zeros(0)
+    if signal.kind == KIND_SAMPLED:
+        return np.asarray(signal.time, dtype=float)
+    return np.array([0.0, float(signal.params[3])])
+
+
 class AbstractMotion(abc.ABC):
     """A floor motion. Subclasses are frozen dataclasses.
 
@@ -49,7 +61,8 @@ class AbstractMotion(abc.ABC):
     2. ``acceleration(t)`` returning the horizontal acceleration (m/s²) for an array ``t``;
     3. ``signal()`` returning the :class:`Signal` of the horizontal acceleration;
     4. optionally ``vertical_signal()`` (default: no vertical motion) and
-       ``breakpoints`` (times where a_g is not smooth; the integrators stop exactly there).
+       ``breakpoints`` (times where a_g is not smooth; the integrators stop exactly there, and at
+       every jump and kink of the two signals too, see :func:`signal_breakpoints`).
     """
 
     @property

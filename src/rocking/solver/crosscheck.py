@@ -100,6 +100,7 @@ from ..excitation.base import (
     KIND_SAMPLED,
     KIND_SINE_PULSE,
     KIND_ZERO,
+    signal_breakpoints,
 )
 from ..excitation.signal import evaluate
 from ..models.dynamics import accelerations
@@ -221,7 +222,9 @@ def _scan_guards(sol, t_start, t_end, ev_funcs, guard_dt):
 
 
 def _breakpoints(motion, t0, t_end):
-    bp = np.asarray(motion.breakpoints, dtype=float)
+    """The motion's breakpoints and its two signals' own jumps and kinks inside (t0, t_end)."""
+    bp = np.concatenate([np.asarray(motion.breakpoints, dtype=float),
+                         signal_breakpoints(motion.signal()), signal_breakpoints(motion.vertical_signal())])
     return np.unique(bp[(bp > t0) & (bp < t_end)])
 
 

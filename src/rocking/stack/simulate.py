@@ -218,7 +218,7 @@ def simulate_stack(
     y0 = np.zeros(6 * n + 2)
     y0[: 3 * n] = z0
     sig_h, sig_v = motion.signal(), motion.vertical_signal()
-    bp = _breakpoints(motion, t_end)
+    bp = _breakpoints(motion, t_end, (sig_h, sig_v))
     pieces = _piece_table((sig_h.kind, sig_h.params, sig_h.time, sig_h.values),
                           (sig_v.kind, sig_v.params, sig_v.time, sig_v.values), bp, 0.0, t_end)
     status, t_stop, samples, events, summ, e0, *_ = engine.integrate(
