@@ -834,6 +834,28 @@ def test_a_stack_stands_while_each_block_up_to_the_interface_touches_and_is_with
     assert seen == {(k, w) for k in range(3) for w in (True, False)}
 
 
+
+def test_an_interfaces_need_is_its_friction_ratio_where_it_sticks_pushes_and_stands():
+    """``_need_of``: |T|/N from the contact forces (T at lam[3k], N at lam[3k + 2]) for an
+    interface that sticks (or cannot slip), pushes (N > 0, however small: a 1 mN force on a
+    50 g block is a real one) and stands (:func:`_stands`); −1 (not counted) where N ≤ 0, where
+    it slips, or where a block up to it does not stand. Exact: one division."""
+    stack = Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(width=0.3, height=1.2, mass=0.05)),
+                  interfaces=(Interface(friction=_friction(0.3, 0.3)), Interface()))
+    P, *_ = pack(stack)  # interface 0 can slip, interface 1 cannot
+    y = np.zeros(6 * 2 + 2)
+    stuck, slipping = np.array([0, 0]), np.array([1, -1])
+    standing = np.array([FLAT, ROCK])
+    for T, N in ((0.2, 1e-3), (-3.0, 10.0), (5.0, 0.0), (1.0, -2.0), (0.0, 4.0)):
+        lam = np.array([T, 0.0, N, T, 0.0, N])
+        for k in (0, 1):
+            want = abs(T) / N if N > 0.0 else -1.0
+            assert E._need_of(P, standing, stuck, y, lam, k) == want
+            # the floor interface slips: not counted; the upper one cannot slip: counted
+            assert E._need_of(P, standing, slipping, y, lam, k) == (-1.0 if k == 0 else want)
+            assert E._need_of(P, np.array([OPEN, ROCK]), stuck, y, lam, k) == -1.0
+
+
 def _block_in_flight():
     """A single block in flight (OPEN): its anchor's guard is its gap d, the state's component 2."""
     P, ends, anchor, z = pack(Stack(blocks=(Block(width=0.4, height=0.8, mass=30.0),), interfaces=(Interface(),)))
