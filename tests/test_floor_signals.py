@@ -14,12 +14,11 @@ rounding, ≤ 1e-15 of the peak, is then all there is).
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import numpy as np
 import pytest
-from helpers import G, OPTS, alone, block
+from helpers import G, alone, block
 
 import rocking as rk
 from rocking.excitation.record import GroundMotion
@@ -259,63 +258,3 @@ def test_direct_evaluator_matches_a_record():
         want = reference(ts)
         np.testing.assert_allclose(got, want, rtol=RTOL, atol=RTOL * np.max(np.abs(want)))
 
-
-@dataclasses.dataclass(frozen=True, kw_only=True, slots=True)
-class _PushWithLift(rk.RectanglePulse):
-    """A horizontal rectangle pulse and an upward one of its own, shorter width, both from t = 0:
-    a user's motion whose ``breakpoints`` (inherited) names the horizontal pulse's only."""
-
-    lift: float = 0.0
-    lift_width: float = 1.0
-    declared: bool = False  # whether breakpoints lists the lift's end too
-
-    def _lift(self):
-        return rk.RectanglePulse(amplitude=self.lift, width=self.lift_width)
-
-    def vertical_signal(self):
-        return self._lift().signal()
-
-    def vertical_acceleration(self, t):
-        return self._lift().acceleration(t)
-
-    @property
-    def breakpoints(self):
-        return np.array([0.0, self.lift_width, self.width] if self.declared else [0.0, self.width])
-
-
-@pytest.mark.parametrize("declared", [False, True], ids=["not listed", "listed"])
-@pytest.mark.parametrize("engine", ["two-body", "stack"])
-def test_a_block_slips_when_a_vertical_lift_that_kept_it_stuck_ends(engine, declared):
-    """Floor: a_h = 0.2 g for 2 s, and a_v = 0.3 g for the first 1 s. A squat block (μs = μk =
-    0.18) needs 0.2/1.3 = 0.154 while lifted and 0.2 after: it must stick until exactly 1 s, then
-    slide (relative acceleration (μ − 0.2) g for 1 s, then −μ g until it stops), which gives
-    the peak slide ½(0.2 − μ)g + (0.2 − μ)²g/(2μ) in closed form. With μs = 0.21 it never slips
-    and needs 0.2. The lift's end is a jump the solvers must stop at whether or not the motion
-    lists it (until 2026-12-03 an unlisted one was straddled, and the block never slipped); and
-    at that stop the contact mode must be decided again (the stack engine's rule at a breakpoint,
-    whose removal kept the block stuck where it needed 0.2 > μs). Tolerances: the event time to
-    1e-9 s (the solvers' event accuracy), the slide to 1e-9 relative (a closed form of
-    piecewise-constant accelerations, integrated exactly by either solver but for rounding), the
-    need to 1e-12 (a ratio of constant forces)."""
-    from rocking.stack import Block, Interface, Stack, simulate_stack
-
-    motion = _PushWithLift(amplitude=0.2 * G, width=2.0, lift=0.3 * G, lift_width=1.0, declared=declared)
-
-    def run(mu):
-        friction = rk.Friction(static=mu, kinetic=mu)
-        if engine == "two-body":
-            s = rk.simulate(alone(block(1.0, 0.5, mass=100.0, friction=friction)), motion, duration=2.5,
-                            options=OPTS).summary()
-            return s["first_sliding_time"], s["peak_sliding"], s["required_top_friction"]
-        stack = Stack(blocks=(Block(width=1.0, height=0.5, mass=100.0),), interfaces=(Interface(friction=friction),))
-        r = simulate_stack(stack, motion, duration=2.5, options=OPTS)
-        return r.blocks[0]["first_sliding_time"], r.blocks[0]["peak_sliding"], r.summary()["interfaces"][0]["required_friction"]
-
-    mu = 0.18
-    first, peak, _ = run(mu)
-    assert first == pytest.approx(1.0, abs=1e-9)
-    d = 0.2 - mu
-    assert peak == pytest.approx(0.5 * d * G + d**2 * G / (2 * mu), rel=1e-9)
-    first, peak, need = run(0.21)
-    assert first is None and peak == 0.0
-    assert need == pytest.approx(0.2, rel=1e-12)

@@ -343,8 +343,8 @@ class _RampUnderAFallingLift(AbstractMotion):
     """a_h = c·t for t ≤ t2 (m/s²), and an upward a_v = A for t ≤ t1 < t2 that then drops to 0:
     at t1 the floor's grip μs·(g + a_v) falls by a jump while a_h goes on rising smoothly."""
 
-    def __init__(self, c, t2, lift, t1):
-        self.c, self.t2, self.lift, self.t1 = c, t2, lift, t1
+    def __init__(self, c, t2, lift, t1, listed=True):
+        self.c, self.t2, self.lift, self.t1, self.listed = c, t2, lift, t1, listed
 
     @property
     def duration(self):
@@ -352,7 +352,9 @@ class _RampUnderAFallingLift(AbstractMotion):
 
     @property
     def breakpoints(self):
-        return np.array([0.0, self.t1, self.t2])
+        # unlisted, the lift's end is a jump of the vertical signal only (a user's motion that
+        # lists the horizontal one's breakpoints): the solvers must find it there
+        return np.array([0.0, self.t1, self.t2] if self.listed else [0.0, self.t2])
 
     def acceleration(self, t):
         t = np.asarray(t, dtype=float)
@@ -369,16 +371,32 @@ class _RampUnderAFallingLift(AbstractMotion):
         return np.where((t >= 0) & (t <= self.t1), self.lift, 0.0)
 
 
+@pytest.mark.parametrize("listed", [True, False], ids=["listed", "not listed"])
 @pytest.mark.parametrize("engine", ["stack", "two-body"])
-def test_a_jump_of_the_floor_motion_that_breaks_the_grip_starts_the_slip_at_the_jump(engine):
+def test_a_jump_of_the_floor_motion_that_breaks_the_grip_starts_the_slip_at_the_jump(engine, listed):
     """A squat block at rest under a_h = c t while the floor also accelerates upwards by A: its
     grip μs (g + A) holds up to t1 = 1 s (c t1 = 6 < 0.5·1.5 g), and at t1 the lift stops, so
     the grip μs g = 4.9 m/s² falls below c t1 at once. The slip starts at the jump, exactly, and
     then follows s̈ = μk g − c t from rest: s = μk g τ²/2 − c (t³ − t1³)/6 + c t1² τ/2, τ = t − t1.
     A block left stuck through the jump (its mode not decided again when the floor's formula
-    changes) only starts to slip at the ramp's end, or never."""
+    changes) only starts to slip at the ramp's end, or never. The jump must be found whether or
+    not the motion's ``breakpoints`` lists it (until 2026-12-03 an unlisted one was straddled by
+    the steps, and the block never slipped). With μs = 2 it never slips and needs, at most, the
+    ratio c t1/(g + A) just before the jump or c t2/g at the ramp's end (to 1e-12: the forces
+    are those of a block at rest)."""
     c, t1, t2, mu_s, mu_k = 6.0, 1.0, 1.4, 0.5, 0.4
-    motion = _RampUnderAFallingLift(c, t2, 0.5 * G, t1)
+    motion = _RampUnderAFallingLift(c, t2, 0.5 * G, t1, listed)
+    if engine == "stack":
+        held = simulate_stack(Stack(blocks=(Block(width=1.0, height=0.2, mass=50.0),),
+                                    interfaces=(Interface(friction=Friction(static=2.0, kinetic=2.0)),)),
+                              motion, duration=t2, options={"gravity": G})
+        need = held.summary()["interfaces"][0]["required_friction"]
+    else:
+        held = rocking.simulate(rocking.System(statue=rocking.Statue(
+            width=1.0, height=0.2, mass=50.0, friction=Friction(static=2.0, kinetic=2.0))), motion, duration=t2,
+            options={"gravity": G})
+        need = held.summary()["required_top_friction"]
+    assert need == pytest.approx(max(c * t1 / (1.5 * G), c * t2 / G), rel=1e-12)
     fr = Friction(static=mu_s, kinetic=mu_k)
     if engine == "stack":
         r = simulate_stack(Stack(blocks=(Block(width=1.0, height=0.2, mass=50.0),), interfaces=(Interface(friction=fr),)),
