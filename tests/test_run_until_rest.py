@@ -315,3 +315,65 @@ def test_spectrum_counts_runs_still_moving_at_the_cap():
     assert int(full.undetermined_runs.sum()) == 0
     assert int(cut.undetermined_runs.sum()) > 0
     assert int(cut.undetermined_runs.sum()) <= int(cut.runs.sum())
+
+
+def _falling_floor(ah, t_drop=1.0, ramp=0.01, depth=1.5, end=2.0):
+    """A record: a_h = ah throughout, and a_v ramped from 0 at t_drop down to −depth·g over ramp s,
+    then held: the floor falls faster than gravity from t_drop + ramp/depth on."""
+    from rocking.excitation.record import GroundMotion
+
+    t = np.array([0.0, 0.5, t_drop, t_drop + ramp, end])
+    return GroundMotion(time=t, values=np.array([0.0, ah, ah, ah, ah]), name="falling floor",
+                        vertical=np.array([0.0, 0.0, 0.0, -depth * G, -depth * G]))
+
+
+@pytest.mark.parametrize("ah", [0.0, 0.02 * G])
+def test_a_block_that_would_jump_while_it_stands_is_never_shown_safe(ah):
+    """A squat block on a floor that falls faster than gravity: N = M (g + a_v) reaches zero at
+    t₀ = t_drop + ramp/depth exactly (at rest, to the record's bit), the block would jump, and
+    the two-body model, which keeps it on the floor, has no result after that. Until 2026-12-03
+    such a run went on to say "did not overturn; at rest" (35 of 3000 random runs with a vertical
+    floor motion), or "overturned" when the model's statue then toppled under the reversed weight
+    (the floor still falling, no horizontal motion at all: ah = 0 here). Now its status is
+    ``lifted_off`` and its verdict undetermined, at t₀ to 1e-9 s (the solver's event accuracy),
+    and the fragility study counts it as a fall."""
+    from rocking.analyses.fragility import ida
+    from rocking.results.response import lift_off_time
+
+    statue = block(1.0, 0.5, mass=80.0, friction=rk.Friction(static=0.6, kinetic=0.5))
+    r = rk.simulate(alone(statue), _falling_floor(ah), options=OPTS)
+    t0 = 1.0 + 0.01 / 1.5
+    assert r.status == "lifted_off" and not r.summary()["overturned"]
+    assert lift_off_time(r.raw_summary) == pytest.approx(t0, abs=1e-9)
+    assert r.verdict == (f"undetermined: a body would leave its support at t = {t0:.3f} s, which the two-body model "
+                         "does not follow")
+    assert any("stack of blocks" in w for w in r.warnings)
+    if ah:
+        runs = ida({"block": alone(statue)}, {"falling": _falling_floor(ah)}, [ah, 2 * ah], options=OPTS, workers=1)
+        assert runs.fall.all() and not runs.overturned.any() and int(runs.undetermined.sum()) == 2
+
+
+def test_a_lift_off_counts_only_while_the_statue_stands():
+    """``lift_off_time`` reads the first of the two lift-off instants (the floor's normal force,
+    the statue's base force) and drops it at or after the first |θ| > α (a falling statue's
+    lift-off is part of its fall); ``status_of`` overrides only a run that went on (completed,
+    still moving, out of events, or overturned after it), never a solver failure or an interrupt."""
+    from rocking.results.response import lift_off_time, status_of
+    from rocking.solver import compiled as C
+
+    def raw(status, n=math.nan, py=math.nan, exceed=math.nan):
+        out = np.full(C.N_SUMMARY, math.nan)
+        out[C.S_STATUS], out[C.S_N_NONPOSITIVE], out[C.S_PY_NONPOSITIVE], out[C.S_EXCEED_TIME] = status, n, py, exceed
+        return out
+
+    assert lift_off_time(raw(C.STATUS_COMPLETED)) is None
+    assert lift_off_time(raw(C.STATUS_COMPLETED, n=0.8, py=0.7)) == 0.7
+    assert lift_off_time(raw(C.STATUS_COMPLETED, n=0.8, exceed=0.9)) == 0.8
+    assert lift_off_time(raw(C.STATUS_COMPLETED, n=0.9, exceed=0.9)) is None
+    assert lift_off_time(raw(C.STATUS_COMPLETED, py=1.2, exceed=1.0)) is None
+    for code, own, lifted in ((C.STATUS_COMPLETED, "completed", True), (C.STATUS_STILL_MOVING, "still_moving", True),
+                              (C.STATUS_MAX_EVENTS, "max_events", True), (C.STATUS_OVERTURNED, "overturned", True),
+                              (C.STATUS_SINGULAR, "singular", False), (C.STATUS_STEP_FAILED, "step_failed", False),
+                              (C.STATUS_INTERRUPTED, "interrupted", False)):
+        assert status_of(raw(code, n=0.5))[0] == ("lifted_off" if lifted else own)
+        assert status_of(raw(code, n=0.5, exceed=0.4))[0] == own  # lifted after α: the solver's own

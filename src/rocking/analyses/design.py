@@ -172,10 +172,14 @@ def _two_face_band(s: float, *, top_slips: bool = True) -> str:
     return f"with both faces at μs and at μs·(1 ± {s:g}) together and in opposite directions (μk alike)"
 
 
+# why a run that did not overturn may still not prove that the statue stands
+_UNDETERMINED_WHY = "still moving at the end, a body lifting off, or the run stopped"
+
 def run_undetermined(ds) -> np.ndarray:
     """Per run of a summaries Dataset: True where the statue did not overturn, yet the run does not
     prove that it stands: the statue is still moving at the end (``still_moving``, when the
-    summaries carry it) or the run stopped early (any status but ``"completed"``)."""
+    summaries carry it), the run stopped early, or a body would have left its support while the
+    statue stood (``"lifted_off"``): any status but ``"completed"``."""
     over = np.asarray(ds.overturned.values, dtype=bool)
     unproven = np.asarray(ds.status.values).astype(str) != "completed"
     moving = ds.get("still_moving")
@@ -493,8 +497,7 @@ def choose_design(
             risk = "" if "fall risk" in slid_off_text else " (a fall risk)"  # (a text may say it itself)
             parts.append(f"{slid_off_text}{risk} under {len(edge)} of {n_mot} motions: {_names(edge)}")
         if moving:
-            parts.append(f"undetermined (still moving at the end, or the run stopped) under {len(moving)}: "
-                         f"{_names(moving)}")
+            parts.append(f"undetermined ({_UNDETERMINED_WHY}) under {len(moving)}: {_names(moving)}")
         return "; ".join(parts) if parts else f"the statue stands under {every}"
 
     def space(ij: tuple[int, int]) -> str:
@@ -766,7 +769,7 @@ def friction_design(
     tips = np.isfinite(every.pedestal_uplift_time.values) & ~over
     ds["scatter_overturned"] = (run_dims, over)
     ds["scatter_undetermined"] = (run_dims, undetermined, {
-        "long_name": "statue neither overturned nor proven at rest (still moving at the end, or the run stopped)"})
+        "long_name": f"statue neither overturned nor proven at rest ({_UNDETERMINED_WHY})"})
     ds["scatter_peak_rotation_over_alpha"] = (run_dims, rot)
     ds["scatter_peak_sliding"] = (run_dims, slide, {"units": "m"})
     ds["scatter_residual_sliding"] = (run_dims, every.residual_sliding.values, {"units": "m"})
@@ -1356,7 +1359,7 @@ def design_report(ds, *, title: str = "Friction design", chart: str | None = "de
                 state = (f"stands, but the pedestal would tip at {_levels_text(factors, tips)} (a fall risk this "
                          "model does not follow)")
             elif unsure.any():
-                state = f"undetermined at {_levels_text(factors, unsure)} (still moving at the end, or the run stopped)"
+                state = f"undetermined at {_levels_text(factors, unsure)} ({_UNDETERMINED_WHY})"
             else:
                 state = "stands"
             lines.append(f"| {motion} | {_mm_cell(float(sel.clearance.values[k]))} | {state} |")
@@ -1454,7 +1457,7 @@ def _faces_per_motion(ds, at: Mapping[str, float], what: str) -> list[str]:
         elif slid.any():
             state = f"slides to the edge of the {below} at {_named_levels(ds, slid)} (a fall risk)"
         elif unsure.any():
-            state = f"undetermined at {_named_levels(ds, unsure)} (still moving at the end, or the run stopped)"
+            state = f"undetermined at {_named_levels(ds, unsure)} ({_UNDETERMINED_WHY})"
         else:
             state = "stands"
         rot = sel.scatter_peak_rotation_over_alpha.values[k]

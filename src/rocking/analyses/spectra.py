@@ -46,6 +46,7 @@ import numpy as np
 from ..excitation.harmonic import Harmonic
 from ..excitation.pulses import CosinePulse, RickerPulse, SinePulse
 from ..models.bodies import System
+from ..results.response import lift_off_time
 from ..simulation import Options
 from ..solver import compiled as C
 from ..stack.model import Stack
@@ -140,7 +141,10 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
     if status == C.STATUS_INTERRUPTED:
         # cut short by a signal: not a result, and never to be saved in a chunk (see store._run_runs)
         raise KeyboardInterrupt("a run of the spectrum was interrupted")
-    if status in (C.STATUS_SINGULAR, C.STATUS_STEP_FAILED, C.STATUS_MAX_EVENTS):
+    # a body that would leave its support while the statue stands ends what the two-body model
+    # can tell (results.response.lift_off_time): undetermined, as a solver failure
+    lifted = status != C.STATUS_OVERTURNED and lift_off_time(raw) is not None
+    if lifted or status in (C.STATUS_SINGULAR, C.STATUS_STEP_FAILED, C.STATUS_MAX_EVENTS):
         if task.criterion == "exceed" and not math.isnan(raw[C.S_EXCEED_TIME]):
             return True  # it had passed α before the solver stopped: that much is known
         counter[1] += 1

@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from ..models.regimes import Regime
+from ..results.response import LIFTED_OFF
 from ..results.wording import need_text
 
 Rows = list[tuple[str, str]]
@@ -168,6 +169,8 @@ def verdict(response) -> str:
             f"(raise simulation.free_time_limit or simulation.duration for a verdict); until then it did not "
             f"overturn: {body}."
         )
+    if s["status"] == LIFTED_OFF:
+        return f"{s['verdict'][0].upper()}{s['verdict'][1:]} ({response.status_message}); until then: {body}."
     if s["status"] != "completed":
         return (
             f"Undetermined: the simulation stopped early at t = {s['end_time']:.2f} s ({response.status_message}); "

@@ -23,6 +23,43 @@ _STATUS = {
     C.STATUS_INTERRUPTED: ("interrupted", "interrupted (Ctrl-C or SIGTERM)"),
 }
 
+#: A run in which a body would have left its support while the statue stood (see lift_off_time).
+LIFTED_OFF = "lifted_off"
+_LIFTED_OFF_MESSAGE = ("a body would leave its support while the statue stood (the warning above says which), "
+                       "which the two-body model does not follow (it keeps every body on its support): what "
+                       "follows is not a result; model it as a stack of blocks ([[blocks]]), whose engine follows "
+                       "the flight")
+# the solver's statuses a lift-off while standing overrides: the run went on after the model's
+# result had ended (to rest, to an overturn, or round a loop of events under a floor falling
+# faster than gravity, where the model's statue topples under the reversed weight)
+_OVERRIDDEN_BY_LIFT_OFF = (C.STATUS_COMPLETED, C.STATUS_STILL_MOVING, C.STATUS_MAX_EVENTS, C.STATUS_OVERTURNED)
+
+
+def lift_off_time(raw: np.ndarray) -> float | None:
+    """The first instant (s) the floor's normal force or the statue's base force reached zero
+    while the statue stood (before |θ| first passed α), or None. From then on a body would leave
+    its support: the pedestal (or a statue alone) would jump off the floor, or the statue off its
+    pedestal. The two-body model keeps them in contact, so the rest of the run is not a result,
+    and a run with such an instant says so: status ``lifted_off``, an undetermined verdict, never
+    safe, and no overturn either (one that follows is the model's, not the statue's). A lift-off
+    after α is part of a fall and changes nothing."""
+    times = [float(raw[i]) for i in (C.S_N_NONPOSITIVE, C.S_PY_NONPOSITIVE) if not math.isnan(raw[i])]
+    if not times:
+        return None
+    t = min(times)
+    exceeded = float(raw[C.S_EXCEED_TIME])
+    return None if exceeded == exceeded and t >= exceeded else t
+
+
+def status_of(raw: np.ndarray) -> tuple[str, str]:
+    """(status, message) of a run from the solver's raw summary: the solver's own, or
+    ``lifted_off`` (see :func:`lift_off_time`)."""
+    code = int(raw[C.S_STATUS])
+    if code in _OVERRIDDEN_BY_LIFT_OFF and lift_off_time(raw) is not None:
+        return LIFTED_OFF, _LIFTED_OFF_MESSAGE
+    return _STATUS[code]
+
+
 # A floor acceleration above this many g is almost surely a units or scaling mistake.
 PGA_WARNING_G = 5.0
 
@@ -70,9 +107,13 @@ SUMMARY_FIELDS = (
 )
 
 
-def verdict_text(status: str, overturn_time: float | None, end_time: float) -> str:
+def verdict_text(status: str, overturn_time: float | None, end_time: float, lift_off: float | None = None) -> str:
     """The one-line verdict: "overturned at t = …", "did not overturn; at rest at t = …", or
-    "undetermined: …" whenever the run could not tell (still moving, or the solver stopped)."""
+    "undetermined: …" whenever the run could not tell (still moving, the solver stopped, or a body
+    would have left its support at ``lift_off``, s)."""
+    if status == LIFTED_OFF:
+        return (f"undetermined: a body would leave its support at t = {lift_off:.3f} s, which the two-body model "
+                "does not follow")
     if status == "overturned":
         return f"overturned at t = {overturn_time:.3f} s"
     if status == "completed":
@@ -84,7 +125,7 @@ def verdict_text(status: str, overturn_time: float | None, end_time: float) -> s
 
 def summary_values(raw: np.ndarray, alpha: float) -> dict[str, Any]:
     """The summary dictionary (keys ``SUMMARY_FIELDS``) from the solver's raw summary vector."""
-    status = _STATUS[int(raw[C.S_STATUS])][0]
+    status = status_of(raw)[0]
     end_time = float(raw[C.S_T_END])
     return {
         "overturned": status == "overturned",
@@ -106,7 +147,7 @@ def summary_values(raw: np.ndarray, alpha: float) -> dict[str, Any]:
         "status": status,
         "end_time": end_time,
         "still_moving": status == "still_moving",
-        "verdict": verdict_text(status, _opt(raw[C.S_OVERTURN_TIME]), end_time),
+        "verdict": verdict_text(status, _opt(raw[C.S_OVERTURN_TIME]), end_time, lift_off_time(raw)),
     }
 
 
@@ -172,11 +213,11 @@ class Response:
     # -- outcome ---------------------------------------------------------------------------
     @property
     def status(self) -> str:
-        return _STATUS[int(self.raw_summary[C.S_STATUS])][0]
+        return status_of(self.raw_summary)[0]
 
     @property
     def status_message(self) -> str:
-        return _STATUS[int(self.raw_summary[C.S_STATUS])][1]
+        return status_of(self.raw_summary)[1]
 
     @property
     def alpha(self) -> float:
@@ -277,7 +318,7 @@ class Response:
         if self._ended_before_motion():
             return (f"undetermined: the run ended at t = {self.end_time:.3f} s, before the floor motion "
                     f"({float(self.motion.duration):.3f} s)")
-        return verdict_text(self.status, self.overturn_time, self.end_time)
+        return verdict_text(self.status, self.overturn_time, self.end_time, lift_off_time(self.raw_summary))
 
     def summary(self) -> dict[str, Any]:
         """The summary contract of ``rocking run`` (SI units, radians, null when it did not happen)."""
