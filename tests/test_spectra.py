@@ -427,3 +427,25 @@ def test_a_pedestal_that_would_tip_fails_the_scan_where_it_first_would():
     np.testing.assert_allclose(ds.amplitude_ratio.values[0], 0.2 * 1.2, rtol=2e-4)
     assert int(ds.pedestal_tips_runs.sum()) > 0
     assert "runs the pedestal would tip" in spectrum_report(ds)
+
+
+def test_a_run_in_which_the_block_would_jump_counts_as_failing():
+    """A 0.5 × 2 m block under one-cosine pulses at ω_p/p = 5, from 20 to 30 g tan α: the Housner
+    model overturns it only near 31 g tan α, but from about 25.9 g tan α the block's base force
+    reaches zero while it stands (status ``lifted_off``): it would jump, which the model does not
+    follow. Such a run is a fall risk, failing like a pedestal that would tip, so the boundary is
+    the first amplitude whose run lifts off: the run at the bracket's lower end does not
+    (completed, at rest), the one at its upper end does. Until 2026-12-03 the scan said "none up
+    to 30"."""
+    from rocking.analyses.spectra import spectrum_report
+
+    statue = rk.Statue(width=0.5, height=2.0, mass=1.0)
+    ds = overturning_spectrum(rk.System(statue=statue), "cosine", [5.0], amplitude_range=(20.0, 30.0), n_scan=6,
+                              rtol=1e-3, options=OPTS, workers=1)
+    lo, hi = float(ds.amplitude_ratio_lower.values[0, 0]), float(ds.amplitude_ratio_upper.values[0, 0])
+    assert 20.0 < lo < hi <= lo * (1 + 2e-3) and int(ds.lifted_off_runs.sum()) > 0
+    p, gta = statue.frequency_parameter(G), G * math.tan(statue.slenderness)
+    status = [rk.simulate(rk.System(statue=statue), spectrum_motion("cosine", a, 5.0, g_tan_alpha=gta, p=p),
+                          options=OPTS).status for a in (lo, hi)]
+    assert status == ["completed", "lifted_off"]
+    assert "would leave its support" in spectrum_report(ds, chart=None)

@@ -175,6 +175,7 @@ def _two_face_band(s: float, *, top_slips: bool = True) -> str:
 # why a run that did not overturn may still not prove that the statue stands
 _UNDETERMINED_WHY = "still moving at the end, a body lifting off, or the run stopped"
 
+
 def run_undetermined(ds) -> np.ndarray:
     """Per run of a summaries Dataset: True where the statue did not overturn, yet the run does not
     prove that it stands: the statue is still moving at the end (``still_moving``, when the

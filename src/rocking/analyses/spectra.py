@@ -46,7 +46,7 @@ import numpy as np
 from ..excitation.harmonic import Harmonic
 from ..excitation.pulses import CosinePulse, RickerPulse, SinePulse
 from ..models.bodies import System
-from ..results.response import lift_off_time
+from ..results.response import LIFTED_OFF, status_of
 from ..simulation import Options
 from ..solver import compiled as C
 from ..stack.model import Stack
@@ -142,9 +142,12 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
         # cut short by a signal: not a result, and never to be saved in a chunk (see store._run_runs)
         raise KeyboardInterrupt("a run of the spectrum was interrupted")
     # a body that would leave its support while the statue stands ends what the two-body model
-    # can tell (results.response.lift_off_time): undetermined, as a solver failure
-    lifted = status != C.STATUS_OVERTURNED and lift_off_time(raw) is not None
-    if lifted or status in (C.STATUS_SINGULAR, C.STATUS_STEP_FAILED, C.STATUS_MAX_EVENTS):
+    # can tell (results.response.lift_off_time), an overturn after it too: as a pedestal that
+    # would tip (below), a fall risk this model does not follow, failing under every criterion
+    if status_of(raw)[0] == LIFTED_OFF:
+        counter[4 if not math.isnan(raw[C.S_UPLIFT]) else 5] += 1
+        return True
+    if status in (C.STATUS_SINGULAR, C.STATUS_STEP_FAILED, C.STATUS_MAX_EVENTS):
         if task.criterion == "exceed" and not math.isnan(raw[C.S_EXCEED_TIME]):
             return True  # it had passed α before the solver stopped: that much is known
         counter[1] += 1
@@ -238,9 +241,10 @@ def _spectrum_chunk(task: SpectrumTask) -> dict[str, np.ndarray]:
         "undetermined_runs": np.zeros(nf, dtype=np.int64),
         "slid_off_runs": np.zeros(nf, dtype=np.int64),
         "pedestal_tips_runs": np.zeros(nf, dtype=np.int64),
+        "lifted_off_runs": np.zeros(nf, dtype=np.int64),
     }
     for k, beta in enumerate(task.frequency_ratios):
-        counter = [0, 0, 0, 0, 0]
+        counter = [0, 0, 0, 0, 0, 0]
 
         def fails(A: float, beta: float = beta) -> bool:
             return _fails(task, A, beta, g_tan_alpha, p, counter, options)
@@ -273,7 +277,7 @@ def _spectrum_chunk(task: SpectrumTask) -> dict[str, np.ndarray]:
             n_isl += 1
         out["n_islands"][k] = n_isl
         (out["runs"][k], out["failed_runs"][k], out["undetermined_runs"][k], out["slid_off_runs"][k],
-         out["pedestal_tips_runs"][k]) = counter
+         out["pedestal_tips_runs"][k], out["lifted_off_runs"][k]) = counter
     return out
 
 
@@ -360,7 +364,9 @@ def overturning_spectrum(
         inconsistent and lost_contact; counted as safe), ``undetermined_runs`` (still
         moving at the free-motion cap, counted as safe), ``slid_off_runs`` (stacks only) and
         ``pedestal_tips_runs`` (a pedestal of given width and height would tip, which the
-        two-body model does not follow: counted as failing under every criterion).
+        two-body model does not follow: counted as failing under every criterion) and
+        ``lifted_off_runs`` (a body would leave its support while the statue stands, status
+        ``lifted_off``: counted as failing too).
 
     Notes
     -----
@@ -432,10 +438,11 @@ def overturning_spectrum(
         "undetermined_runs": np.zeros((ns, nb), dtype=np.int64),
         "slid_off_runs": np.zeros((ns, nb), dtype=np.int64),
         "pedestal_tips_runs": np.zeros((ns, nb), dtype=np.int64),
+        "lifted_off_runs": np.zeros((ns, nb), dtype=np.int64),
     }
     for (si, r), part in zip(index, parts):
         for key, arr in full.items():
-            if key in part:  # (a chunk saved before slid_off_runs or pedestal_tips_runs existed has none: zeros)
+            if key in part:  # (a chunk saved before a counter existed has none of it: zeros)
                 arr[si, r.start : r.stop] = part[key]
     used = int(max(1, full["n_islands"].max()))
     n_edges = int(max(1, np.isfinite(full["edge_lower"]).sum(axis=-1).max()))
@@ -466,6 +473,9 @@ def overturning_spectrum(
             "pedestal_tips_runs": (dims, full["pedestal_tips_runs"], {
                 "long_name": "runs where the pedestal would tip, which the two-body model does not follow "
                              "(counted as failing)"}),
+            "lifted_off_runs": (dims, full["lifted_off_runs"], {
+                "long_name": "runs where a body would leave its support while the statue stands, which the "
+                             "two-body model does not follow (counted as failing)"}),
         },
         coords={
             "pulse": np.array(shapes, dtype=str),
@@ -612,6 +622,11 @@ def spectrum_report(ds, *, title: str = "Overturning spectra", chart: str | None
         lines += [f"**In {tipping} of {runs} runs the pedestal would tip (the floor's reaction left its base), which "
                   "this model does not follow: counted as failing (a fall risk).** A stack of blocks (the stack "
                   "engine) follows the pedestal's rocking.", ""]
+    lifting = int(ds.lifted_off_runs.sum()) if "lifted_off_runs" in ds else 0
+    if lifting:
+        lines += [f"**In {lifting} of {runs} runs a body would leave its support while the statue stood (the "
+                  "floor's or the statue's base force reached zero), which this model does not follow: counted as "
+                  "failing (a fall risk).** A stack of blocks (the stack engine) follows the flight.", ""]
     lines += ["## Boundary", "", "a_p/(g tan α) of the smallest amplitude that fails; \"none up to "
               f"{top:.3g}\": no overturning in the scanned range; ⁺: safe islands above the boundary (listed below).",
               "", "| β = ω_p/p | " + " | ".join(_MOTION_TITLES.get(m, m) for m in pulses) + " |",

@@ -175,7 +175,7 @@ def velocity_step_ours(block: ex.Block) -> float:
     """The library's smallest overturning velocity step V (m/s), bisected to 1e-8."""
     def fails(v):
         pulse = rk.RectanglePulse(amplitude=v / STEP_WIDTH, width=STEP_WIDTH)
-        return lib.simulate(lib.alone(block), pulse, save=False).overturned
+        return lib.model_overturned(lib.simulate(lib.alone(block), pulse, save=False))
 
     return ex.find(fails, ex.velocity_step_exact(block), rtol=1e-8, step=1.001)
 

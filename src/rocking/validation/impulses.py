@@ -24,7 +24,7 @@ def critical_double(block: ex.Block, delay: float, *, rtol: float = 1e-7) -> flo
     def fails(v):
         t2 = _first_impact(block, v) + delay
         r = lib.simulate(lib.alone(block), lib.two_pulses(v, -v, t2, WIDTH), save=False)
-        return r.overturned
+        return lib.model_overturned(r)
 
     return ex.find(fails, ex.double_impulse_exact(block), rtol=rtol, step=1.002)
 
