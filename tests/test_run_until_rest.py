@@ -348,6 +348,10 @@ def test_a_block_that_would_jump_while_it_stands_is_never_shown_safe(ah):
     assert r.verdict == (f"undetermined: a body would leave its support at t = {t0:.3f} s, which the two-body model "
                          "does not follow")
     assert any("stack of blocks" in w for w in r.warnings)
+    from rocking.report import content  # the report says it too, and does not colour it safe
+
+    assert content.verdict(r).startswith("Undetermined: a body would leave its support at t = ")
+    assert content.verdict_class(r) == "stopped"
     if ah:
         runs = ida({"block": alone(statue)}, {"falling": _falling_floor(ah)}, [ah, 2 * ah], options=OPTS, workers=1)
         assert runs.fall.all() and not runs.overturned.any() and int(runs.undetermined.sum()) == 2

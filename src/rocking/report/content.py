@@ -170,7 +170,9 @@ def verdict(response) -> str:
             f"overturn: {body}."
         )
     if s["status"] == LIFTED_OFF:
-        return f"{s['verdict'][0].upper()}{s['verdict'][1:]} ({response.status_message}); until then: {body}."
+        return (f"{s['verdict'][0].upper()}{s['verdict'][1:]} (the warnings say which body): what follows is not a "
+                f"result; model it as a stack of blocks ([[blocks]]), whose engine follows the flight. Over the "
+                f"whole run, in the two-body model, {body}.")
     if s["status"] != "completed":
         return (
             f"Undetermined: the simulation stopped early at t = {s['end_time']:.2f} s ({response.status_message}); "
