@@ -381,3 +381,24 @@ def test_a_lift_off_counts_only_while_the_statue_stands():
                               (C.STATUS_INTERRUPTED, "interrupted", False)):
         assert status_of(raw(code, n=0.5))[0] == ("lifted_off" if lifted else own)
         assert status_of(raw(code, n=0.5, exceed=0.4))[0] == own  # lifted after α: the solver's own
+
+
+def test_a_pedestal_of_unknown_height_is_never_judged_for_uplift_even_as_it_jumps():
+    """The uplift check needs the pedestal's width and height (x_N = moment/N, the moment from
+    the height): with the width alone it is off, also where N ≤ 0 (the rule that counts a jump
+    under a moment as an uplift has no moment to go by). Under the falling floor above, a
+    statue on a 0.6 m pedestal of unknown height lifts off with no uplift warned; given a
+    height of 0.4 m, the uplift is warned by the lift-off at the latest (to 1e-9 s: x_N runs off
+    the base as N falls)."""
+    from rocking.results.response import lift_off_time
+
+    statue = block(0.3, 0.6, mass=50.0, friction=rk.Friction(static=0.8, kinetic=0.8))
+    for height in (None, 0.4):
+        pedestal = rk.Pedestal(mass=100.0, width=0.6, height=height, friction=rk.Friction(static=0.7, kinetic=0.7))
+        r = rk.simulate(rk.System(statue=statue, pedestal=pedestal), _falling_floor(0.02 * G), options=OPTS)
+        uplift, lift = r.summary()["pedestal_uplift_time"], lift_off_time(r.raw_summary)
+        assert r.status == "lifted_off" and lift is not None
+        if height is None:
+            assert uplift is None and not any("uplift" in w for w in r.warnings)
+        else:
+            assert uplift is not None and uplift <= lift + 1e-9
