@@ -21,6 +21,7 @@ from .kinematics import (
     P_BL,
     P_BU,
     P_CAN_SLIP,
+    P_HL,
     P_HU,
     P_INERTIA,
     P_MASS,
@@ -48,6 +49,7 @@ from .modes import (
     SELECT_OK,
     VELOCITY,
     corner_x,
+    end_gap_gradient,
     flat_forces,
     frozen_set,
     reanchor,
@@ -647,12 +649,6 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                     need_q[k, sub] = _need_of(P, nstate, tstate, ym, ws[WS_LAM], k)
             n_q = sub + 1
             for j in range(ng):
-                if sub == 1 and j % N_GUARD_SLOTS == G_EDGE and g0[j] <= 0.0 and g1[j] < g0[j]:
-                    # a block placed flush with the edge below that slides outwards: its corner
-                    # passes the edge at once (a guard starting at zero that only falls)
-                    x_first = 0.0
-                    first = j
-                    break
                 if sub == 1 and g0[j] <= 0.0 and g1[j] < 0.0 and _is_slip(j, nstate, tstate):
                     # a slip that runs against its own direction from the start: it stops now
                     x_first = 0.0
@@ -682,9 +678,22 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                                 x_first = xr
                                 first = j
                             break
+                    if not opened and j % N_GUARD_SLOTS == G_EDGE and g1[j] < g0[j]:
+                        # A block placed flush with the edge below that slides outwards: its
+                        # corner passes the edge at once (a guard starting at zero that only
+                        # falls). Only once the probes found it never above zero: the guard is
+                        # the nearer of the two ends, and a block a hair wider than the one
+                        # below has its other end pass the other edge 2(b_u − b_l)/v after the
+                        # first; where that came before the first sample, the end at zero, which
+                        # rises, was taken for one that falls, and the same edge event repeated
+                        # at one instant until the run stopped `inconsistent` (a random stack
+                        # 0.11 mm wider than its plinth under Kobe with a vertical part).
+                        x_first = 0.0
+                        first = j
+                        break
                     if not opened and _is_gap(j, nstate):
                         guards_from(P, ends, anchor, nstate, tstate, y_new, ws[WS_LAM_END], gm, held)
-                        opened = gm[j] > 0.0
+                        opened = gm[j] > 0.0 or _opened_below_rounding(P, ends, anchor, j, y, y_new, gm[j])
                     if not opened and _is_gap(j, nstate):
                         # The corner never opens as far as the gap can be resolved (a rebound
                         # of ~1e-8 rad/s rises less than the rounding of the positions): it
@@ -1203,6 +1212,25 @@ def _is_force(j, nstate, tstate):
 
 
 @njit(cache=True, _nrt=False)
+def _opened_below_rounding(P, ends, anchor, j, y, y_new, gap_end):
+    """Whether the gap of guard j (a far corner's), which reads zero to the rounding of the
+    positions at the step's end (``gap_end``, m), opened over the step from y to y_new to first
+    order: ∇gap · Δ(a, φ, d), from differences of the interface's own coordinates, which resolve
+    what the corner's height (a difference of positions of the blocks' size) cannot. A slender
+    base under two heavy blocks, at the instant its rocking starts with zero acceleration, tilts
+    as τ³: 1.6e-16 rad after 1.6 µs, where its corner's height read 0.0 m. Closed again at once,
+    it was set rocking by the mode selection at the same instant, 50 times, then `inconsistent`."""
+    k = j // N_GUARD_SLOTS
+    if j - k * N_GUARD_SLOTS != G_OTHER:
+        return False  # an anchor's gap is its own coordinate d, resolved as it is
+    if abs(gap_end) > 64.0 * 2.220446049250313e-16 * (P[k, P_HU] + P[k, P_HL] + P[k, P_BU] + P[k, P_BL]):
+        return False
+    i = 3 * k
+    grad = end_gap_gradient(P, ends, anchor, k, y, 1 - anchor[k])
+    return grad[0] * (y_new[i] - y[i]) + grad[1] * (y_new[i + 1] - y[i + 1]) + grad[2] * (y_new[i + 2] - y[i + 2]) > 0.0
+
+
+@njit(cache=True, _nrt=False)
 def _is_gap(j, nstate):
     """Whether guard j is the gap of a corner that is open (m), not a force or a slip."""
     k = j // N_GUARD_SLOTS
@@ -1493,6 +1521,17 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
     for j in range(n):
         geo[j] = nstate[j]
     impact = (slot == G_OTHER and nstate[k] != FLAT) or (slot == G_ANCHOR and nstate[k] == OPEN)
+    if impact and k >= 1:
+        xl, xr = corner_x(P, ends, anchor, k, z)
+        if min(xr, P[k, P_BL]) - max(xl, -P[k, P_BL]) <= 1e-9 * (P[k, P_HU] + P[k, P_BU]):
+            # A block that tips over the edge below, its far corner sliding onto that edge: the
+            # corner closes its gap at the instant the overlap of the faces ends (the corner is
+            # then the anchor's point), and which guard the location found first was the
+            # rounding's choice. It falls off; an impact there was repeated at one instant, then
+            # `inconsistent` (a block 60 µm wider than its plinth, pushed over its edge).
+            summ[k, B_OVERTURN] = t
+            n_ev = _record(events, n_ev, t, k, G_OVERLAP, nstate[k], tstate[k], 0.0)
+            return STATUS_OVERTURNED, d_impact, n_ev
     if impact:
         xd_before = _centre_velocities(P, ends, anchor, z, zd)[0]
         e_located = _energy_of(P, ends, anchor, y, gravity)
