@@ -669,7 +669,9 @@ def _deepest_sink(r) -> float:
                 below = blocks[k - 1]
                 xb, yb, tb = (r.pose[:, k - 1, c] for c in range(3))
                 u = (px - xb) * np.cos(tb) - (py - yb) * np.sin(tb)  # along the face below
-                gap = np.where(np.abs(u) <= 0.5 * below.width,
+                # (not a block turned to ±π/2 on the one below: its overturn, where it may lie
+                # along that block's side, its corner at the face's end and far below it)
+                gap = np.where((np.abs(u) <= 0.5 * below.width) & (np.abs(th - tb) < 0.5 * np.pi - 1e-9),
                                (px - xb) * np.sin(tb) + (py - yb) * np.cos(tb) - 0.5 * below.height, np.inf)
             deepest = min(deepest, float(np.min(gap)))
     return deepest
@@ -1074,6 +1076,45 @@ def test_a_slender_base_under_heavy_blocks_starts_to_rock_though_its_tilt_is_bel
     assert np.max(np.abs(phi_mj)) > 0.01  # it rocks
     np.testing.assert_allclose(np.interp(ts, r.t, r.rotation[:, 0]), phi_mj, rtol=0, atol=5e-5)
     assert np.all(r.rotation[r.t <= 3.0, 1:] == 0.0)
+
+
+def test_a_block_overturning_about_the_corner_of_a_narrower_one_below_lies_along_its_side_not_in_it():
+    """A random stack (seed 3's 131st of the tests' random stacks): a block 0.71 m wide rocks about
+    the corner of the 0.35 m base under it (Northridge × 0.97 with a vertical part, 0.22 × the
+    horizontal one reversed) and overturns at 3.49 s. At φ = −π/2 its face is vertical through the
+    base's corner, and the part that overhung hangs along the base's side: its own corner lies at
+    the end of the base's face (to the bit) and 0.245 m below it. The run's self-check counted that
+    corner as sunk 0.245 m into the base and reported `lost_contact`; a block turned to ±π/2 is
+    its overturn, and its corners are not on the face below. The rows before it: no corner sinks
+    (the independent geometry here, to 1e-9 m)."""
+    from rocking.io.records import read_record
+
+    base = read_record("Northridge1994_RinaldiReceivingSta_228").trimmed(15.0).scaled(0.9669064609944824)
+    motion = dataclasses.replace(base, vertical=0.2198886117898482 * base.values[::-1].copy())
+    stack = Stack(blocks=(Block(width=0.3485797216437727, height=1.413017385334587, mass=721.0201559645694),
+                          Block(width=0.7139832230646742, height=0.38797893681087214, mass=76.64101415253954,
+                                offset=-0.06267489379426824),
+                          Block(width=0.8778364152733206, height=1.1227543873466599, mass=135.58145345484925,
+                                offset=-0.04526105731699588)),
+                  interfaces=(Interface(friction=Friction(static=0.3215445153253485, kinetic=0.2800613834717034),
+                                        restitution=0.5266614703553223),
+                              Interface(restitution=0.9191175752121079),
+                              Interface(friction=Friction(static=0.24064228981374763, kinetic=0.19589432020016098))))
+    r = simulate_stack(stack, motion, options={"save_dt": 0.005, "max_events": 100000})
+    assert r.status == "overturned" and r.blocks[1]["overturned"], r.verdict
+    t_fall = r.blocks[1]["overturn_time"]
+    assert 3.49 < t_fall < 3.491
+    row = np.nonzero(r.t == t_fall)[0][0]
+    assert abs(r.rotation[row, 1] + 0.5 * math.pi) < 1e-12
+    (x1, y1, t1), (x2, y2, t2) = r.pose[row, 0], r.pose[row, 1]
+    bu, hu = 0.5 * stack.blocks[1].width, 0.5 * stack.blocks[1].height
+    # its left bottom corner (−b, −h/2), Θ clockwise, relative to the base's centre
+    dx = x2 - bu * math.cos(t2) - hu * math.sin(t2) - x1
+    dy = y2 + bu * math.sin(t2) - hu * math.cos(t2) - y1
+    along = dx * math.cos(t1) - dy * math.sin(t1)
+    up = dx * math.sin(t1) + dy * math.cos(t1) - 0.5 * stack.blocks[0].height
+    assert abs(abs(along) - 0.5 * stack.blocks[0].width) < 1e-12 and up < -0.2
+    assert _deepest_sink(dataclasses.replace(r, pose=r.pose[r.t < t_fall])) > -1e-9
 
 
 def test_a_mode_solve_satisfies_the_equations_of_that_mode():

@@ -240,7 +240,10 @@ def first_past_edge(blocks: Sequence[Mapping[str, Any]]) -> tuple[float, int] | 
 def deepest_sink(stack: Stack, pose: np.ndarray) -> float:
     """How deep (m, ≥ 0) any block's bottom corner went below the top face of the block under it
     (or the floor), over the poses ``pose`` (n, N, 3) as in :attr:`StackResponse.pose`. A corner
-    beyond the end of the face below is not on it and is skipped."""
+    beyond the end of the face below is not on it and is skipped, and so are the corners of a
+    block turned to ±π/2 on the one below (to 1e-9 rad): that is its overturn, where the run
+    ends, and one that overturns about the lower block's corner lies along that block's side, its
+    own corner at the face's end (to rounding) and up to its width below."""
     deepest = 0.0
     cos, sin = np.cos(pose[:, :, 2]), np.sin(pose[:, :, 2])  # once: each block's Θ serves twice
     for k, block in enumerate(stack.blocks):
@@ -254,7 +257,9 @@ def deepest_sink(stack: Stack, pose: np.ndarray) -> float:
                 below = stack.blocks[k - 1]
                 dx, dy, cb, sb = px - pose[:, k - 1, 0], py - pose[:, k - 1, 1], cos[:, k - 1], sin[:, k - 1]
                 up = dx * sb + dy * cb - 0.5 * below.height
-                gap = np.where(np.abs(dx * cb - dy * sb) <= 0.5 * below.width, up, np.inf)
+                on = (np.abs(dx * cb - dy * sb) <= 0.5 * below.width) & (
+                    np.abs(pose[:, k, 2] - pose[:, k - 1, 2]) < 0.5 * np.pi - 1e-9)
+                gap = np.where(on, up, np.inf)
             deepest = max(deepest, float(-np.min(gap, initial=0.0)))
     return deepest
 
