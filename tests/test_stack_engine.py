@@ -994,6 +994,7 @@ def test_a_block_a_hair_wider_than_its_plinth_slides_over_both_edges_tips_and_fa
                        options={"gravity": G, "save_dt": 0.01})
     assert r.status == "overturned" and r.blocks[1]["overturned"], r.verdict
     assert r.events[:, 1:3].tolist() == [[1, 5], [1, 5], [1, 1], [1, 6]]
+    assert r.events[3, 3:].tolist() == [1, 1, 0.0]  # it falls rocking and slipping; no impact loss
     c = a - mu * G
     expected = [math.sqrt(2 * s / c) for s in (o0 - delta, o0 + delta, o0 + bl - mu * h / 2)]
     np.testing.assert_allclose(r.events[:3, 0], expected, rtol=0, atol=1e-9)
