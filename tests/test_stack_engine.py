@@ -1006,6 +1006,23 @@ def test_a_block_a_hair_wider_than_its_plinth_slides_over_both_edges_tips_and_fa
     assert np.max(np.abs(r.balance_error())) < 1e-9 * scale
 
 
+def _with_reversed_vertical(name, scale, cv):
+    """15 s of record ``name`` scaled by ``scale``, with a vertical part cv × its horizontal one
+    reversed in time (the vertical motion of the random scans that found the cases below)."""
+    from rocking.io.records import read_record
+
+    base = read_record(name).trimmed(15.0).scaled(scale)
+    return dataclasses.replace(base, vertical=cv * base.values[::-1].copy())
+
+
+def _stack_from(blocks, interfaces):
+    """A Stack from rows (width, height, mass, offset) and (μs, μk, restitution); μs None: the
+    interface never slips."""
+    return Stack(blocks=tuple(Block(width=w, height=h, mass=m, offset=o) for w, h, m, o in blocks),
+                 interfaces=tuple(Interface(friction=None if mu_s is None else Friction(static=mu_s, kinetic=mu_k),
+                                            restitution=r) for mu_s, mu_k, r in interfaces))
+
+
 def test_a_corner_at_one_edge_is_not_taken_for_one_passing_it_when_the_other_corner_passes_the_other_edge_first():
     """A random stack (seed 7's 48th of the tests' random stacks) whose middle block is 0.11 mm
     wider than the one below, under 15 s of Kobe with a vertical part (0.34 × the horizontal one
@@ -1016,19 +1033,13 @@ def test_a_corner_at_one_edge_is_not_taken_for_one_passing_it_when_the_other_cor
     corner passing the edge at once. The same event repeated at one instant until the run
     stopped `inconsistent` at 6.106 s. Now the run reaches a verdict, and each edge event puts its
     corner on its edge to 1e-12 m (the blocks are flat there)."""
-    from rocking.io.records import read_record
-
-    base = read_record("Kobe1995_Takatori_000").trimmed(15.0).scaled(0.7851322717636504)
-    motion = dataclasses.replace(base, vertical=0.33944210843360667 * base.values[::-1].copy())
-    stack = Stack(blocks=(Block(width=0.6791974372606197, height=0.33512173685356983, mass=4.118251142691979),
-                          Block(width=0.6793097281409662, height=0.809542978538724, mass=755.4417735509004,
-                                offset=0.08975440614676766),
-                          Block(width=0.8049402248900218, height=1.221762179059261, mass=87.12563490620727,
-                                offset=-0.05798861272083977)),
-                  interfaces=(Interface(friction=Friction(static=0.7942553144972426, kinetic=0.5689631202166588)),
-                              Interface(friction=Friction(static=0.27498060696427784, kinetic=0.2261018641195579)),
-                              Interface(friction=Friction(static=0.6906592572685667, kinetic=0.6281858657195952),
-                                        restitution=0.7119911659251734)))
+    motion = _with_reversed_vertical("Kobe1995_Takatori_000", 0.7851322717636504, 0.33944210843360667)
+    stack = _stack_from(
+        [(0.6791974372606197, 0.33512173685356983, 4.118251142691979, 0.0),
+         (0.6793097281409662, 0.809542978538724, 755.4417735509004, 0.08975440614676766),
+         (0.8049402248900218, 1.221762179059261, 87.12563490620727, -0.05798861272083977)],
+        [(0.7942553144972426, 0.5689631202166588, None), (0.27498060696427784, 0.2261018641195579, None),
+         (0.6906592572685667, 0.6281858657195952, 0.7119911659251734)])
     r = simulate_stack(stack, motion, options={"save_dt": 0.005, "max_events": 100000})
     assert r.status == "completed", r.verdict
     edges = r.events[r.events[:, 2] == 5]
@@ -1053,19 +1064,15 @@ def test_a_slender_base_under_heavy_blocks_starts_to_rock_though_its_tilt_is_bel
     shares no physics code with the engine (Δt = 2e-4 s; at 1e-4 s its rotation moves by 1.1e-5
     rad at 3 s, the engine's differs by 1e-5 from the one and 1e-6 from the other): the base's
     rotation to 5e-5 rad at 2 to 3 s, while the blocks above stay flat on it."""
-    from rocking.io.records import read_record
     from rocking.stack.timestepping import moreau_jean
 
-    base = read_record("ImperialValley1940_ElCentroArray9_180").trimmed(15.0).scaled(0.38121624252951664)
-    motion = dataclasses.replace(base, vertical=0.8422139441780945 * base.values[::-1].copy())
-    stack = Stack(blocks=(Block(width=0.1954897880328545, height=1.357399061491634, mass=16.68342425076199),
-                          Block(width=0.9910469127824942, height=1.5934172772440331, mass=169.66429773766885,
-                                offset=0.03510097173614132),
-                          Block(width=0.5170206648631608, height=0.44935973713181826, mass=182.42482171314688,
-                                offset=-0.06393138846540475)),
-                  interfaces=(Interface(friction=Friction(static=0.4165691170035012, kinetic=0.40380799331504386)),
-                              Interface(friction=Friction(static=0.6065625443353023, kinetic=0.42835932214343414)),
-                              Interface(friction=Friction(static=0.31335873842541506, kinetic=0.25138511292387095))))
+    motion = _with_reversed_vertical("ImperialValley1940_ElCentroArray9_180", 0.38121624252951664, 0.8422139441780945)
+    stack = _stack_from(
+        [(0.1954897880328545, 1.357399061491634, 16.68342425076199, 0.0),
+         (0.9910469127824942, 1.5934172772440331, 169.66429773766885, 0.03510097173614132),
+         (0.5170206648631608, 0.44935973713181826, 182.42482171314688, -0.06393138846540475)],
+        [(0.4165691170035012, 0.40380799331504386, None), (0.6065625443353023, 0.42835932214343414, None),
+         (0.31335873842541506, 0.25138511292387095, None)])
     r = simulate_stack(stack, motion, options={"save_dt": 0.005, "max_events": 100000})
     assert r.status == "overturned" and r.blocks[0]["overturned"], r.verdict
     assert 1.7199 < r.blocks[0]["first_rocking_time"] < 1.72
@@ -1088,19 +1095,13 @@ def test_a_block_overturning_about_the_corner_of_a_narrower_one_below_lies_along
     corner as sunk 0.245 m into the base and reported `lost_contact`; a block turned to ±π/2 is
     its overturn, and its corners are not on the face below. The rows before it: no corner sinks
     (the independent geometry here, to 1e-9 m)."""
-    from rocking.io.records import read_record
-
-    base = read_record("Northridge1994_RinaldiReceivingSta_228").trimmed(15.0).scaled(0.9669064609944824)
-    motion = dataclasses.replace(base, vertical=0.2198886117898482 * base.values[::-1].copy())
-    stack = Stack(blocks=(Block(width=0.3485797216437727, height=1.413017385334587, mass=721.0201559645694),
-                          Block(width=0.7139832230646742, height=0.38797893681087214, mass=76.64101415253954,
-                                offset=-0.06267489379426824),
-                          Block(width=0.8778364152733206, height=1.1227543873466599, mass=135.58145345484925,
-                                offset=-0.04526105731699588)),
-                  interfaces=(Interface(friction=Friction(static=0.3215445153253485, kinetic=0.2800613834717034),
-                                        restitution=0.5266614703553223),
-                              Interface(restitution=0.9191175752121079),
-                              Interface(friction=Friction(static=0.24064228981374763, kinetic=0.19589432020016098))))
+    motion = _with_reversed_vertical("Northridge1994_RinaldiReceivingSta_228", 0.9669064609944824, 0.2198886117898482)
+    stack = _stack_from(
+        [(0.3485797216437727, 1.413017385334587, 721.0201559645694, 0.0),
+         (0.7139832230646742, 0.38797893681087214, 76.64101415253954, -0.06267489379426824),
+         (0.8778364152733206, 1.1227543873466599, 135.58145345484925, -0.04526105731699588)],
+        [(0.3215445153253485, 0.2800613834717034, 0.5266614703553223), (None, None, 0.9191175752121079),
+         (0.24064228981374763, 0.19589432020016098, None)])
     r = simulate_stack(stack, motion, options={"save_dt": 0.005, "max_events": 100000})
     assert r.status == "overturned" and r.blocks[1]["overturned"], r.verdict
     t_fall = r.blocks[1]["overturn_time"]
