@@ -1223,7 +1223,9 @@ def _opened_below_rounding(P, ends, anchor, j, y, y_new, gap_end):
     k = j // N_GUARD_SLOTS
     if j - k * N_GUARD_SLOTS != G_OTHER:
         return False  # an anchor's gap is its own coordinate d, resolved as it is
-    if abs(gap_end) > 64.0 * 2.220446049250313e-16 * (P[k, P_HU] + P[k, P_HL] + P[k, P_BU] + P[k, P_BL]):
+    # the rounding of a corner's height: positions of the blocks' size (not the floor's half
+    # width, 1e300, which made every gap of the floor's interface "below the rounding")
+    if abs(gap_end) > 64.0 * 2.220446049250313e-16 * (P[k, P_HU] + P[k, P_HL] + 2.0 * P[k, P_BU]):
         return False
     i = 3 * k
     grad = end_gap_gradient(P, ends, anchor, k, y, 1 - anchor[k])
