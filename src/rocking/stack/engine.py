@@ -224,7 +224,7 @@ def guards_from(P, ends, anchor, nstate, tstate, y, lam, g, held):
         if k >= 1:
             xl, xr = corner_x(P, ends, anchor, k, z)
             bl = P[k, P_BL]
-            g[b + G_OVERLAP] = min(xr, bl) - max(xl, -bl)
+            g[b + G_OVERLAP] = _overlap(xl, xr, bl)
             if nstate[k] == FLAT and tstate[k] != 0:
                 sl = 1.0 if ends[k, 0, 0] == END_U else -1.0
                 sr = 1.0 if ends[k, 1, 0] == END_U else -1.0
@@ -1211,6 +1211,13 @@ def _is_force(j, nstate, tstate):
     return False
 
 
+@njit(cache=True, _nrt=False, inline="always")
+def _overlap(xl, xr, bl):
+    """The length (m) of the overlap of two faces along the lower one, half width ``bl``, from
+    the upper block's corners xl, xr in the lower block's frame (≤ 0: it is off the lower one)."""
+    return min(xr, bl) - max(xl, -bl)
+
+
 @njit(cache=True, _nrt=False)
 def _opened_below_rounding(P, ends, anchor, j, y, y_new, gap_end):
     """Whether the gap of guard j (a far corner's), which reads zero to the rounding of the
@@ -1514,6 +1521,15 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
     zd = y[nz:2 * nz].copy()
     i = 3 * k
     ah, av = _ground(loc, t)
+    impact = (slot == G_OTHER and nstate[k] != FLAT) or (slot == G_ANCHOR and nstate[k] == OPEN)
+    xl, xr = corner_x(P, ends, anchor, k, z) if k >= 1 else (0.0, 0.0)
+    if impact and k >= 1 and _overlap(xl, xr, P[k, P_BL]) <= 1e-9 * (P[k, P_HU] + P[k, P_BU]):
+        # A block that tips over the edge below, its far corner sliding onto that edge: the
+        # corner closes its gap at the instant the overlap of the faces ends (the corner is then
+        # the anchor's point), and which guard the location found first was the rounding's
+        # choice. It falls off; an impact there was repeated at one instant, then `inconsistent`
+        # (a block 60 µm wider than its plinth, pushed over its edge).
+        slot = G_OVERLAP
     if slot == G_OVERTURN or slot == G_OVERLAP:
         summ[k, B_OVERTURN] = t
         n_ev = _record(events, n_ev, t, k, slot, nstate[k], tstate[k], 0.0)
@@ -1522,18 +1538,6 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
     t_before_state = tstate.copy()
     for j in range(n):
         geo[j] = nstate[j]
-    impact = (slot == G_OTHER and nstate[k] != FLAT) or (slot == G_ANCHOR and nstate[k] == OPEN)
-    if impact and k >= 1:
-        xl, xr = corner_x(P, ends, anchor, k, z)
-        if min(xr, P[k, P_BL]) - max(xl, -P[k, P_BL]) <= 1e-9 * (P[k, P_HU] + P[k, P_BU]):
-            # A block that tips over the edge below, its far corner sliding onto that edge: the
-            # corner closes its gap at the instant the overlap of the faces ends (the corner is
-            # then the anchor's point), and which guard the location found first was the
-            # rounding's choice. It falls off; an impact there was repeated at one instant, then
-            # `inconsistent` (a block 60 µm wider than its plinth, pushed over its edge).
-            summ[k, B_OVERTURN] = t
-            n_ev = _record(events, n_ev, t, k, G_OVERLAP, nstate[k], tstate[k], 0.0)
-            return STATUS_OVERTURNED, d_impact, n_ev
     if impact:
         xd_before = _centre_velocities(P, ends, anchor, z, zd)[0]
         e_located = _energy_of(P, ends, anchor, y, gravity)
