@@ -1052,7 +1052,9 @@ def test_a_corner_at_one_edge_is_not_taken_for_one_passing_it_when_the_other_cor
         assert abs(x + side * bu - side * bl) < 1e-12
 
 
-def test_a_slender_base_under_heavy_blocks_starts_to_rock_though_its_tilt_is_below_the_rounding_of_its_corner():
+@pytest.mark.parametrize("held_pedestal", [False, True], ids=["on the floor", "on a held pedestal"])
+def test_a_slender_base_under_heavy_blocks_starts_to_rock_though_its_tilt_is_below_the_rounding_of_its_corner(
+        held_pedestal):
     """A random stack (seed 2's 111th of the tests' random stacks): a base 0.2 m wide and 1.36 m
     tall under 350 kg, at rest under El Centro × 0.38 with a vertical part (0.84 × the horizontal
     one reversed) until its rocking starts at 1.72 s with zero acceleration. Its tilt grows as τ³:
@@ -1060,66 +1062,45 @@ def test_a_slender_base_under_heavy_blocks_starts_to_rock_though_its_tilt_is_bel
     positions of 1 m, read 0.0 m. The corner was taken for one that never opened and landed, the
     mode selection set the base rocking again at the same instant, 50 times, and the run stopped
     `inconsistent`. Now the opening is judged to first order from the interface's own
-    coordinates, and the base rocks and falls. Against the independent Moreau–Jean solver, which
-    shares no physics code with the engine (Δt = 2e-4 s; at 1e-4 s its rotation moves by 1.1e-5
-    rad at 3 s, the engine's differs by 1e-5 from the one and 1e-6 from the other): the base's
-    rotation to 5e-5 rad at 2 to 3 s, while the blocks above stay flat on it."""
+    coordinates, and the base rocks and falls.
+
+    The same stack on a pedestal 2 m wide, 0.5 m tall and 2000 kg that never slips and never
+    rocks: the base now starts to rock on the pedestal's face, and the rule must hold above the
+    floor's interface too (the slot test of `_opened_below_rounding`): with it turned off there,
+    the run stops `inconsistent` at 1.720 s (mutant c08d715d, seen on a copy of the source, and so
+    with the pedestal 0.2, 0.25 and 1.0 m tall).
+
+    Against the independent Moreau–Jean solver, which shares no physics code with the engine
+    (Δt = 2e-4 s; at 1e-4 s its rotation moves by 1.1e-5 rad at 3 s, the engine's differs by 1e-5
+    from the one and 1e-6 from the other, on the floor and on the pedestal alike): the base's
+    rotation to 5e-5 rad at 2 to 3 s, while every other block stays flat."""
     from rocking.stack.timestepping import moreau_jean
 
     motion = _with_reversed_vertical("ImperialValley1940_ElCentroArray9_180", 0.38121624252951664, 0.8422139441780945)
-    stack = _stack_from(
-        [(0.1954897880328545, 1.357399061491634, 16.68342425076199, 0.0),
-         (0.9910469127824942, 1.5934172772440331, 169.66429773766885, 0.03510097173614132),
-         (0.5170206648631608, 0.44935973713181826, 182.42482171314688, -0.06393138846540475)],
-        [(0.4165691170035012, 0.40380799331504386, None), (0.6065625443353023, 0.42835932214343414, None),
-         (0.31335873842541506, 0.25138511292387095, None)])
+    blocks = [(0.1954897880328545, 1.357399061491634, 16.68342425076199, 0.0),
+              (0.9910469127824942, 1.5934172772440331, 169.66429773766885, 0.03510097173614132),
+              (0.5170206648631608, 0.44935973713181826, 182.42482171314688, -0.06393138846540475)]
+    interfaces = [(0.4165691170035012, 0.40380799331504386, None), (0.6065625443353023, 0.42835932214343414, None),
+                  (0.31335873842541506, 0.25138511292387095, None)]
+    if held_pedestal:
+        blocks.insert(0, (2.0, 0.5, 2000.0, 0.0))
+        interfaces.insert(0, (None, None, None))
+    base = 1 if held_pedestal else 0
+    stack = _stack_from(blocks, interfaces)
     r = simulate_stack(stack, motion, options={"save_dt": 0.005, "max_events": 100000})
-    assert r.status == "overturned" and r.blocks[0]["overturned"], r.verdict
-    assert 1.7199 < r.blocks[0]["first_rocking_time"] < 1.72
+    assert r.status == "overturned" and r.blocks[base]["overturned"], r.verdict
+    assert 1.7199 < r.blocks[base]["first_rocking_time"] < 1.72
+    if held_pedestal:
+        assert r.blocks[0]["first_rocking_time"] is None and r.blocks[0]["first_sliding_time"] is None
     m = moreau_jean(stack, lambda t: float(motion.acceleration(np.array([t]))[0]),
                     lambda t: float(motion.vertical_acceleration(np.array([t]))[0]), t_end=3.0, dt=2e-4, save_every=10)
     assert m.status == "completed"
     ts = np.array([2.0, 2.5, 3.0])
-    phi_mj = np.interp(ts, m.t, m.pose[:, 0, 2])
+    phi_mj = np.interp(ts, m.t, m.pose[:, base, 2])
     assert np.max(np.abs(phi_mj)) > 0.01  # it rocks
-    np.testing.assert_allclose(np.interp(ts, r.t, r.rotation[:, 0]), phi_mj, rtol=0, atol=5e-5)
-    assert np.all(r.rotation[r.t <= 3.0, 1:] == 0.0)
-
-
-def test_a_slender_block_on_a_held_pedestal_starts_to_rock_though_its_tilt_is_below_the_rounding_of_its_corner():
-    """The stack of the test above on a pedestal 2 m wide, 0.5 m tall and 2000 kg that never slips
-    and never rocks: the same slender block now starts to rock on the pedestal's face, not on the
-    floor, at 1.72 s with zero acceleration, its tilt below the rounding of its far corner's height
-    for a whole step. The first-order opening rule must hold above the floor's interface too (the
-    slot test of `_opened_below_rounding`): with it turned off above the floor, the run stops
-    `inconsistent` at 1.720 s (mutant c08d715d, seen on a copy of the source, and so with the
-    pedestal 0.2, 0.25 and 1.0 m tall). Against the independent Moreau–Jean solver (Δt = 2e-4 s; at
-    1e-4 s its rotation at 3 s moves by 1.1e-5 rad, the engine's differs by 1e-6 from that one): the
-    slender block's rotation to 5e-5 rad at 2 to 3 s, while the pedestal and the blocks above stay
-    flat."""
-    from rocking.stack.timestepping import moreau_jean
-
-    motion = _with_reversed_vertical("ImperialValley1940_ElCentroArray9_180", 0.38121624252951664, 0.8422139441780945)
-    stack = _stack_from(
-        [(2.0, 0.5, 2000.0, 0.0),
-         (0.1954897880328545, 1.357399061491634, 16.68342425076199, 0.0),
-         (0.9910469127824942, 1.5934172772440331, 169.66429773766885, 0.03510097173614132),
-         (0.5170206648631608, 0.44935973713181826, 182.42482171314688, -0.06393138846540475)],
-        [(None, None, None), (0.4165691170035012, 0.40380799331504386, None),
-         (0.6065625443353023, 0.42835932214343414, None), (0.31335873842541506, 0.25138511292387095, None)])
-    r = simulate_stack(stack, motion, options={"save_dt": 0.005, "max_events": 100000})
-    assert r.status == "overturned" and r.blocks[1]["overturned"], r.verdict
-    assert r.blocks[0]["first_rocking_time"] is None and r.blocks[0]["first_sliding_time"] is None
-    assert 1.7199 < r.blocks[1]["first_rocking_time"] < 1.72
-    m = moreau_jean(stack, lambda t: float(motion.acceleration(np.array([t]))[0]),
-                    lambda t: float(motion.vertical_acceleration(np.array([t]))[0]), t_end=3.0, dt=2e-4, save_every=10)
-    assert m.status == "completed"
-    ts = np.array([2.0, 2.5, 3.0])
-    phi_mj = np.interp(ts, m.t, m.pose[:, 1, 2])
-    assert np.max(np.abs(phi_mj)) > 0.01  # it rocks
-    np.testing.assert_allclose(np.interp(ts, r.t, r.rotation[:, 1]), phi_mj, rtol=0, atol=5e-5)
-    early = r.t <= 3.0
-    assert np.all(r.rotation[early][:, [0, 2, 3]] == 0.0)
+    np.testing.assert_allclose(np.interp(ts, r.t, r.rotation[:, base]), phi_mj, rtol=0, atol=5e-5)
+    others = [k for k in range(len(blocks)) if k != base]
+    assert np.all(r.rotation[r.t <= 3.0][:, others] == 0.0)
 
 
 def test_a_block_overturning_about_the_corner_of_a_narrower_one_below_lies_along_its_side_not_in_it():
