@@ -20,15 +20,12 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import pytest
+from hypothesis import HealthCheck, event, given, settings
+from hypothesis import strategies as st
 
-hypothesis = pytest.importorskip("hypothesis")
-from hypothesis import HealthCheck, event, given, settings  # noqa: E402
-from hypothesis import strategies as st  # noqa: E402
-
-from rocking.excitation.record import GroundMotion  # noqa: E402
-from rocking.io.config import Config, ConfigError, load_config  # noqa: E402
-from rocking.io.records import RecordError, bundled_records, read_record  # noqa: E402
+from rocking.excitation.record import GroundMotion
+from rocking.io.config import Config, ConfigError, load_config
+from rocking.io.records import RecordError, bundled_records, read_record
 
 # Each test stays within a few seconds; no deadline per example (the machine may be shared).
 # ROCKING_FUZZ_EXAMPLES=2000 searches harder (minutes), e.g. after changing a reader.
