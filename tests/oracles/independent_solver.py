@@ -81,16 +81,18 @@ Transitions (derivation §4, §6):
   s·θ̈ = 0 at the crossing); a stuck pedestal is selected again;
 * STOP: u̇ = 0; the pedestal is selected again (stick, or a slip the other way at once: P12);
 * IMPACT at θ = 0: θ := 0 and the impact map of ``options.impact`` gives u̇⁺ and θ̇⁺ and the new
-  pivot; if |θ̇⁺| < ``rest_velocity`` the statue is at rest (SETTLE: θ̇ := 0, and u̇ keeps its
-  value before the impact, see below); then the pedestal (if u̇⁺ = 0) and the statue (if
-  settled) are selected again. If θ goes the wrong way
+  pivot; if |θ̇⁺| < ``rest_velocity`` the statue is at rest (SETTLE: θ̇ := 0; u̇ takes the map's
+  u̇⁺, or 0 if |u̇⁺| < rest_velocity·(b + h), see below); then the pedestal (if u̇⁺ = 0) and the
+  statue (if settled) are selected again. If θ goes the wrong way
   right after an UPLIFT (a tangency of the threshold), the impact guard fires at once with
   θ̇ ≈ 0: the map then leaves |θ̇⁺| < rest_velocity and the statue is back at rest (SETTLE);
 * SETTLE closes a Zeno sequence of ever smaller impacts at its accumulation point, where θ̇ = 0.
-  The kick the last impact would give the pedestal is O(θ̇⁻) like the rest of the sequence and
-  is dropped with it (u̇⁺ := u̇⁻). Applied instead, it can start an endless cycle after the
-  motion: the pedestal slides at ~1e-9 m/s, a statue at rest on a sliding pedestal must rock
-  when μk > tan α, the pedestal stops, the statue falls back and settles, and again;
+  The kick the last impact would give the pedestal is then O(θ̇⁻) like the rest of the sequence,
+  and a slide slower than rest_velocity·(b + h) is dropped with it (u̇⁺ := 0). Kept, it can start
+  an endless cycle: the pedestal slides at ~1e-7 m/s, a statue at rest on a sliding pedestal
+  must rock when μk > tan α, the pedestal stops, the statue falls back and settles, and again.
+  A faster u̇⁺ stands: an impact that leaves |θ̇⁺| ≈ 0 on a pedestal sliding fast (a nearly
+  plastic sliding impact) changes its slide for real;
 * EXCEED_ALPHA: recorded once; FALL: the run ends, status "overturned";
 * BREAKPOINT: at a breakpoint of the floor motion (a record sample, the end of a pulse or of
   the harmonic) the regime is selected again with the acceleration of the next piece; an event
@@ -518,11 +520,14 @@ class _Run:
                         self.diag["impact_inconsistent"] += 1
                     s = s_after
                     if abs(thd1) < m.rest_velocity:
-                        # The Zeno sequence is closed at its accumulation point: θ̇ = 0, and the
-                        # pedestal keeps u̇⁻ (the map's kick to it is O(θ̇⁻), like the rest of
-                        # the sequence that is dropped; keeping it can restart a sequence that
-                        # never ends when μk > tan α: slide, rock, stop, settle, slide…).
-                        ud1, thd1, s, kind = y[1], 0.0, 0, "SETTLE"
+                        # The Zeno sequence is closed at its accumulation point: θ̇ = 0. The map's
+                        # u̇⁺ stands, unless slower than rest_velocity·(b + h): that kick is
+                        # O(θ̇⁻), like the rest of the sequence, and is dropped (kept, it can
+                        # restart a sequence that never ends when μk > tan α: slide, rock, stop,
+                        # settle, slide…).
+                        thd1, s, kind = 0.0, 0, "SETTLE"
+                        if abs(ud1) < m.rest_velocity * (m.b + m.h):
+                            ud1 = 0.0
                     y[1], y[3] = ud1, thd1
                     sig, s, st = m.select(y, s, a, av)
                 self._note(st)

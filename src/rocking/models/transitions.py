@@ -65,12 +65,22 @@ def apply_transition(p, guard, at_step_start, y, sig, s, a, av):
         ly = p[M2] * p[B] * (abs(thd1) + abs(y[3]))
         top_ratio = friction_ratio(lx, ly)
         s = -s
+        if abs(thd1) < p[REST_VEL]:
+            # The settle closes a Zeno sequence of ever smaller impacts at its accumulation
+            # point (θ̇ := 0). The impact's u̇⁺ is kept (an impact that ends the rocking of a
+            # block sliding fast changes its slide for real), but a slide slower than the rest
+            # velocity × the statue's size (b + h) stops with the rocking: the kick is then O(θ̇⁻),
+            # like the rest of the sequence (the stack engine's rule, docs/theory/stack.md §6).
+            # Kept, it restarts the sequence when μk > tan α: a statue on a sliding base must
+            # rock, the slide stops, the statue falls back and settles with a new kick, and
+            # again; under a record the events accumulated at one instant until max_events.
+            kind = EV_SETTLE
+            thd1 = 0.0
+            s = 0
+            if abs(ud1) < p[REST_VEL] * (p[B] + p[H]):
+                ud1 = 0.0
         y[1] = ud1
         y[3] = thd1
-        if abs(thd1) < p[REST_VEL]:
-            kind = EV_SETTLE
-            y[3] = 0.0
-            s = 0
         lost = t_before - kinetic_energy(p, s, y[1], 0.0, y[3])
         sig2, s2, ok2 = select_regime(p, y, s, a, av, False, False)
         return sig2, s2, kind, ok and ok2, True, lost, floor_ratio, top_ratio, floor_short
