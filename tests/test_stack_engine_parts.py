@@ -1172,3 +1172,40 @@ def test_the_papers_impact_law_keeps_the_pedestals_sliding_velocity():
 
     loss = kinetic(np.array([0, 0]), z, before) - kinetic(anchor, y[:6], y[6:12])
     assert loss > 0.0 and d_impact == pytest.approx(loss, rel=1e-9)
+
+
+def test_a_far_corner_within_the_rounding_opens_as_its_first_order_change_says():
+    """``_opened_below_rounding``: a rocking interface's far corner whose gap reads zero to the
+    rounding of the positions at a step's end has opened if the first-order change of that gap
+    over the step, ∇gap · Δ(a, φ, d), is positive. Checked on random stacks rocking about either
+    end against the oracle's complex-step gradient of the far end's gap (end 1 − anchor), for a
+    step of 1e-12 in a random direction; the bound of the rounding, 64 ε (h_u + h_l + 2 b_u), is
+    held at 0.99 and 1.01 of it (above it the gap is resolved as it reads: False), and an anchor's
+    own gap (its coordinate d) is never judged this way. Kills 786c8323 (the far end read as
+    1 + anchor, past the end of the table for anchor 1), 17671e4c, 0452ef08 and e9a99568 (the
+    bound's terms and factor) in bench/MUTATION.md's thirty-fourth round."""
+    rng = np.random.default_rng(12)
+    checked = [0, 0]
+    while min(checked) < 25:
+        state = random_state(rng, ACCELERATION)
+        if state is None:
+            continue
+        P, ends, anchor, geo, z, zd, _ = state
+        for k in range(P.shape[0]):
+            if geo[k] != ROCK:
+                continue
+            far = 1 - int(anchor[k])
+            grad = jacobian(lambda zz, k=k, far=far: np.array([contact(P, ends, anchor, k, zz, far)[0]]), z)[0]
+            dz = rng.normal(size=z.size) * 1e-12
+            rate = grad @ dz
+            if abs(rate) < 1e-3 * np.linalg.norm(grad) * np.linalg.norm(dz):
+                continue  # a step along the gap's level line: the sign is the rounding's
+            y, y_new = _y(z, zd), _y(z + dz, zd)
+            j = k * E.N_GUARD_SLOTS + E.G_OTHER
+            bound = 64.0 * np.finfo(float).eps * (P[k, P_HU] + P[k, P_HL] + 2.0 * P[k, P_BU])
+            for gap_end in (0.0, 0.99 * bound, -0.99 * bound):
+                assert E._opened_below_rounding(P, ends, anchor, j, y, y_new, gap_end) == (rate > 0.0)
+            for gap_end in (1.01 * bound, -1.01 * bound):
+                assert not E._opened_below_rounding(P, ends, anchor, j, y, y_new, gap_end)
+            assert not E._opened_below_rounding(P, ends, anchor, k * E.N_GUARD_SLOTS + E.G_ANCHOR, y, y_new, 0.0)
+            checked[int(anchor[k])] += 1
