@@ -8,6 +8,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from ..models import parameters as P
 from ..models.regimes import EventKind, Regime
 from ..models.transitions import EV_IMPACT, EV_SETTLE
 from ..solver import compiled as C
@@ -283,6 +284,11 @@ class Response:
                 f"{int(s[C.S_IMPACT_FLOOR_SHORT])} impact(s) needed more floor friction than μs "
                 f"(up to {s[C.S_IMPACT_FLOOR_RATIO]:.3f}); the paper's impact law ignores this"
             )
+        lifts = self.impact_uplifts()
+        if lifts.size:
+            out.append(f"from t = {lifts[0]:.4f} s, at {lifts.size} impact(s), the floor's impulse under the pedestal "
+                       "falls outside its base: a corner of the pedestal would lift for an instant (or the impact "
+                       "restitute less), which the two-body model does not follow; a stack of blocks ([[blocks]]) does")
         if s[C.S_INDETERMINATE] > 0:
             out.append(f"{int(s[C.S_INDETERMINATE])} instant(s) where no regime was strictly consistent")
         if self.status not in ("completed", "overturned"):
@@ -383,6 +389,41 @@ class Response:
             for start, stop in zip(edges[::2], edges[1::2]):
                 out.append((name, float(self.t[start]), float(self.t[stop - 1])))
         return sorted(out, key=lambda v: v[1])
+
+    def impact_uplifts(self) -> np.ndarray:
+        """Times (s) of the impacts after which a corner of the pedestal would lift for an instant:
+        the impulses the two-body model gives them need the floor's normal impulse to act outside
+        the pedestal's base. Empty without a pedestal of known width and height.
+
+        At an impact the finite forces (weight, the floor's motion) give no impulse. The pedestal,
+        which the model keeps from rotating, takes the statue's change of angular momentum about
+        its base centre O, ΔL = −I_c·Δθ̇ − (H1 + h)·Λx (the couple of a restitution other than
+        Housner's included, as the stack engine has it), and its own momentum change m1·Δu̇ at its
+        centre; the floor's impulse (Fx, Λy) acts at x from O with
+
+            x·Λy = ΔL − ½·H1·m1·Δu̇,
+
+        the impulse form of the pressure centre's moment (derivation §3.5). Here Λx = m2·(Δu̇ +
+        h·Δθ̇), Λy = m2·b·(|θ̇⁺| + |θ̇⁻|) (derivation §6) and I_c = I_O − m2·R². With Housner's
+        restitution ΔL is the moment of the impulse at the new corner, s⁺·b·Λy − H1·Λx. It lifts
+        if |x| > B1/2. The two-body model keeps the pedestal flat through such an impact. A
+        settling impact's row holds the state after the rest rule, not the map's, and is not
+        judged."""
+        ped = self.system.pedestal
+        if ped is None or ped.width is None or ped.height is None:
+            return np.empty(0)
+        rows = self.event_table[self.event_table[:, 1] == EV_IMPACT]
+        if rows.size == 0:
+            return np.empty(0)
+        p = self.parameters
+        b, h, m2, m1, h1 = p[P.B], p[P.H], p[P.M2], p[P.M1], ped.height
+        i_c = p[P.I_O] - m2 * p[P.R] ** 2
+        du, dth = rows[:, 5] - rows[:, 4], rows[:, 7] - rows[:, 6]
+        lx = m2 * (du + h * dth)
+        ly = m2 * b * (np.abs(rows[:, 7]) + np.abs(rows[:, 6]))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            x = (-i_c * dth - (h1 + h) * lx - 0.5 * h1 * m1 * du) / ly
+        return rows[(ly > 0) & (np.abs(x) > 0.5 * ped.width), 0]
 
     # -- key point kinematics (paper Eqs. 7–13) --------------------------------------------
     def key_point(self, x: float, y: float) -> dict[str, np.ndarray]:
