@@ -451,6 +451,12 @@ def _uplift_check(response, s: Mapping[str, Any]) -> Check | None:
     limit = f"|x_N| ≤ {pedestal.width / 2:g} m, half its width"
     t = s.get("pedestal_uplift_time")
     if t is None:
+        # an impact's impulse outside the base lifts a corner for an instant at most: a warning,
+        # named here so that the pass does not read as denying it
+        lifts = response.impact_uplifts()
+        if lifts.size:
+            return Check(name, f"within its base; at {lifts.size} impact(s) from t = {lifts[0]:.2f} s the "
+                         "impulse is not (see the warnings)", limit, PASS)
         return Check(name, "within its base", limit, PASS)
     return Check(name, f"leaves its base at t = {t:.2f} s", limit, FAIL)
 
