@@ -659,20 +659,12 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                     # was selected slipping again at the same instant, 50 times, and the run
                     # stopped `inconsistent`. So probe it at geometrically closer points, as a
                     # gap that starts at zero.
-                    xp = x_hi
-                    ran = False
-                    for probe in range(24):
-                        xp *= 0.5
-                        dop853.dense_on(y, F, xp, ym, moving, n_moving[0])
-                        guards(P, ends, anchor, nstate, tstate, t + xp * hs, ym, loc, gravity, gm, held, ws)
-                        if gm[j] > 0.0:
-                            ran = True
-                            xr = _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, xp, x_hi,
-                                         gm[j], g1[j], ym, gm, held, ws)
-                            if xr < x_first:
-                                x_first = xr
-                                first = j
-                            break
+                    xr = _probe_from_zero(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_hi, g1[j],
+                                          ym, gm, held, ws, moving, n_moving[0])
+                    ran = xr >= 0.0
+                    if ran and xr < x_first:
+                        x_first = xr
+                        first = j
                     if not ran:
                         # it runs against its own direction from the start: it stops now
                         x_first = 0.0
@@ -689,20 +681,12 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                     # a guard that starts at zero (the gap of the corner an impact just left):
                     # it may open and close again within the first sub-step (a Zeno-like
                     # sequence), so probe it at geometrically closer points
-                    xp = x_hi
-                    opened = False
-                    for probe in range(24):
-                        xp *= 0.5
-                        dop853.dense_on(y, F, xp, ym, moving, n_moving[0])
-                        guards(P, ends, anchor, nstate, tstate, t + xp * hs, ym, loc, gravity, gm, held, ws)
-                        if gm[j] > 0.0:
-                            opened = True
-                            xr = _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, xp, x_hi,
-                                         gm[j], g1[j], ym, gm, held, ws)
-                            if xr < x_first:
-                                x_first = xr
-                                first = j
-                            break
+                    xr = _probe_from_zero(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_hi, g1[j],
+                                          ym, gm, held, ws, moving, n_moving[0])
+                    opened = xr >= 0.0
+                    if opened and xr < x_first:
+                        x_first = xr
+                        first = j
                     if not opened and j % N_GUARD_SLOTS == G_EDGE and g1[j] < g0[j]:
                         # A block placed flush with the edge below that slides outwards: its
                         # corner passes the edge at once (a guard starting at zero that only
@@ -1222,6 +1206,24 @@ def _save_grid(P, ends, anchor, nstate, tstate, t, y, h, F, dense_ok, K, loc, gr
         n_out += 1
         next_grid += 1
     return n_out, next_grid
+
+
+@njit(cache=True, _nrt=False)
+def _probe_from_zero(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_hi, g_hi, ym, gm, held, ws,
+                     moving, n_moving):
+    """Guard j starts at zero and reads g_hi ≤ 0 at the step's fraction x_hi: probe it on the dense
+    output at x_hi/2, x_hi/4, … (24 halvings). Returns the fraction where it comes back to zero
+    after the first probe that finds it positive (located between that probe and x_hi), or −1
+    if no probe does."""
+    xp = x_hi
+    for probe in range(24):
+        xp *= 0.5
+        dop853.dense_on(y, F, xp, ym, moving, n_moving)
+        guards(P, ends, anchor, nstate, tstate, t + xp * hs, ym, loc, gravity, gm, held, ws)
+        if gm[j] > 0.0:
+            return _locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, xp, x_hi, gm[j], g_hi,
+                           ym, gm, held, ws)
+    return -1.0
 
 
 @njit(cache=True, _nrt=False)
