@@ -65,11 +65,11 @@ def main() -> None:
     rows, t0 = [], time.perf_counter()
     for i, name, alone, system, stack, motion in cases(args.seed, args.runs):
         two = rk.simulate(system, motion)
-        a, b = two.summary(), simulate_stack(stack, motion).summary()
+        a, b, lifts = two.summary(), simulate_stack(stack, motion).summary(), two.impact_uplifts()
         rows.append(dict(i=i, record=name, alone=alone, two_body=a["status"], stack=b["status"],
                          two_body_verdict=a["verdict"], stack_verdict=b["verdict"],
                          force_uplift=a["pedestal_uplift_time"],
-                         impact_uplift=float(two.impact_uplifts()[0]) if two.impact_uplifts().size else None,
+                         impact_uplift=float(lifts[0]) if lifts.size else None,
                          stack_pedestal_rocks=None if alone else b["blocks"][0]["first_rocking_time"]))
     print(f"{len(rows)} runs in {time.perf_counter() - t0:.0f} s (seed {args.seed})")
     for pair, n in collections.Counter((r["two_body"], r["stack"]) for r in rows).most_common():

@@ -661,15 +661,14 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                     # gap that starts at zero.
                     xr = _probe_from_zero(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_hi, g1[j],
                                           ym, gm, held, ws, moving, n_moving[0])
-                    ran = xr >= 0.0
-                    if ran and xr < x_first:
-                        x_first = xr
-                        first = j
-                    if not ran:
+                    if xr < 0.0:
                         # it runs against its own direction from the start: it stops now
                         x_first = 0.0
                         first = j
                         break
+                    if xr < x_first:
+                        x_first = xr
+                        first = j
                     continue
                 if sub == 1 and g0[j] < -1e3 * tol_force and g1[j] < g0[j] and _is_force(j, nstate, tstate):
                     # the mode breaks its own condition from the start (a force born negative):
@@ -684,7 +683,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                     xr = _probe_from_zero(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, j, x_hi, g1[j],
                                           ym, gm, held, ws, moving, n_moving[0])
                     opened = xr >= 0.0
-                    if opened and xr < x_first:
+                    if 0.0 <= xr < x_first:
                         x_first = xr
                         first = j
                     if not opened and j % N_GUARD_SLOTS == G_EDGE and g1[j] < g0[j]:
