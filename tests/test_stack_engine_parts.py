@@ -1203,9 +1203,84 @@ def test_a_far_corner_within_the_rounding_opens_as_its_first_order_change_says()
             y, y_new = _y(z, zd), _y(z + dz, zd)
             j = k * E.N_GUARD_SLOTS + E.G_OTHER
             bound = 64.0 * np.finfo(float).eps * (P[k, P_HU] + P[k, P_HL] + 2.0 * P[k, P_BU])
+            ws = E.new_workspace(P.shape[0])
             for gap_end in (0.0, 0.99 * bound, -0.99 * bound):
-                assert E._opened_below_rounding(P, ends, anchor, j, y, y_new, gap_end) == (rate > 0.0)
+                assert E._opened_below_rounding(P, ends, anchor, j, y, y_new, gap_end, ws) == (rate > 0.0)
             for gap_end in (1.01 * bound, -1.01 * bound):
-                assert not E._opened_below_rounding(P, ends, anchor, j, y, y_new, gap_end)
-            assert not E._opened_below_rounding(P, ends, anchor, k * E.N_GUARD_SLOTS + E.G_ANCHOR, y, y_new, 0.0)
+                assert not E._opened_below_rounding(P, ends, anchor, j, y, y_new, gap_end, ws)
+            assert not E._opened_below_rounding(P, ends, anchor, k * E.N_GUARD_SLOTS + E.G_ANCHOR, y, y_new, 0.0, ws)
+            # a gap read from its lift-off is not judged again from the step's start
+            ws[E.WS_LIFT][k, E.LIFT_MARK] = 1.0
+            assert not E._opened_below_rounding(P, ends, anchor, j, y, y_new, 0.0, ws)
             checked[int(anchor[k])] += 1
+
+
+def test_a_far_corner_that_lifts_within_the_rounding_is_read_from_its_lift_off():
+    """``mark_lift_offs`` and ``resolve_gaps``: an interface that starts to rock (it was flat)
+    with its far corner at the face (φ = 0 here, so the gap reads zero to the rounding) keeps its
+    coordinates and the far gap's gradient there, which must be the oracle's complex-step
+    gradient; a guard of that gap that reads within the rounding bound, 64 ε (h_u + h_l + 2 b_u),
+    is then replaced by the gradient times the change of (a, φ, d) since the lift-off (the
+    oracle's, to 1e-9), and one beyond it is left as it reads. The mark stays through decisions
+    that do not concern the interface, is taken again at its impact (unmarked if its far gap is
+    then open), and is dropped once it is flat. A corner lifted beyond the rounding is not
+    marked. (The engine test of the same rule: a block set rocking just before a record's
+    sample, tests/test_stack_engine.py.)"""
+    rng = np.random.default_rng(36)
+    checked = 0
+    while checked < 30:
+        state = random_state(rng, ACCELERATION)
+        if state is None:
+            continue
+        P, ends, anchor, geo, z, zd, _ = state
+        n = P.shape[0]
+        for k in range(n):
+            if geo[k] != ROCK:
+                continue
+            i, j, far = 3 * k, k * E.N_GUARD_SLOTS + E.G_OTHER, 1 - int(anchor[k])
+            bound = 64.0 * np.finfo(float).eps * (P[k, P_HU] + P[k, P_HL] + 2.0 * P[k, P_BU])
+            tilted = z.copy()
+            z = z.copy()
+            z[i + 1] = z[i + 2] = 0.0
+            nstate, was = geo.copy(), geo.copy()
+            was[k] = FLAT
+            ws = E.new_workspace(n)
+            lift = ws[E.WS_LIFT]
+            E.mark_lift_offs(P, ends, anchor, nstate, was, anchor.copy(), -1, _y(z, zd), ws)
+            assert lift[k, E.LIFT_MARK] == 1.0
+            np.testing.assert_array_equal(lift[k, E.LIFT_AT:E.LIFT_AT + 3], z[i:i + 3])
+            grad = jacobian(lambda zz, k=k, far=far: np.array([contact(P, ends, anchor, k, zz, far)[0]]), z)[0]
+            np.testing.assert_allclose(lift[k, E.LIFT_GRAD:E.LIFT_GRAD + 3], grad[i:i + 3], rtol=1e-12, atol=1e-15)
+            dz = np.zeros_like(z)
+            dz[i:i + 3] = rng.normal(size=3) * 1e-15
+            y1 = _y(z + dz, zd)
+            for reads in (0.0, 0.99 * bound, -0.99 * bound, 1.01 * bound, -1.01 * bound):
+                g = np.full(n * E.N_GUARD_SLOTS, 7.0)
+                g[j] = reads
+                E.resolve_gaps(P, ends, anchor, nstate, y1, g, ws)
+                if abs(reads) < bound:
+                    assert g[j] == pytest.approx(grad @ dz, rel=1e-9, abs=1e-30)
+                else:
+                    assert g[j] == reads
+                assert np.all(np.delete(g, j) == 7.0)
+            # another interface's event: the mark and its reference stay
+            before = lift[k].copy()
+            E.mark_lift_offs(P, ends, anchor, nstate, nstate.copy(), anchor.copy(), -1, _y(tilted, zd), ws)
+            np.testing.assert_array_equal(lift[k], before)
+            # its own impact, leaving the far corner open beyond the rounding: unmarked
+            E.mark_lift_offs(P, ends, anchor, nstate, nstate.copy(), anchor.copy(), k, _y(tilted, zd), ws)
+            assert lift[k, E.LIFT_MARK] == 0.0
+            # lifted beyond the rounding from flat: not marked
+            E.mark_lift_offs(P, ends, anchor, nstate, was, anchor.copy(), -1, _y(tilted, zd), ws)
+            assert lift[k, E.LIFT_MARK] == 0.0
+            # marked again, then flat: unmarked, and a flat interface's guard is never replaced
+            E.mark_lift_offs(P, ends, anchor, nstate, was, anchor.copy(), -1, _y(z, zd), ws)
+            assert lift[k, E.LIFT_MARK] == 1.0
+            flat = nstate.copy()
+            flat[k] = FLAT
+            g = np.zeros(n * E.N_GUARD_SLOTS)
+            E.resolve_gaps(P, ends, anchor, flat, y1, g, ws)
+            assert g[j] == 0.0
+            E.mark_lift_offs(P, ends, anchor, flat, nstate, anchor.copy(), -1, _y(z, zd), ws)
+            assert lift[k, E.LIFT_MARK] == 0.0
+            checked += 1

@@ -60,10 +60,14 @@ from .modes import (
 
 FSAL5 = 6  # row of K holding the right-hand side at a Dormand–Prince 5(4) step's end
 # new_workspace's tuple after the frame and the solve scratch (its first 15 arrays): dy, Λ, a
-# state-sized work array, Λ at the end of the last step, and the state's components sorted into
-# those the current step integrates and those its mode holds still (:func:`_moving`)
+# state-sized work array, Λ at the end of the last step, the state's components sorted into
+# those the current step integrates and those its mode holds still (:func:`_moving`), and the
+# far-corner gaps read from their lift-off (:func:`mark_lift_offs`)
 WS_FROZEN = 10
-WS_DY, WS_LAM, WS_WORK, WS_LAM_END, WS_ACT, WS_N_ACT = 15, 16, 17, 18, 19, 20
+WS_DY, WS_LAM, WS_WORK, WS_LAM_END, WS_ACT, WS_N_ACT, WS_LIFT = 15, 16, 17, 18, 19, 20, 21
+# a row of ws[WS_LIFT] per interface: marked (1.0) or not, then (a, φ, d) at the lift-off and the
+# far gap's gradient along them there
+LIFT_MARK, LIFT_AT, LIFT_GRAD = 0, 1, 4
 N_SUB = 4  # interior points of a step where the guards are sampled
 LOOKAHEAD = 1e-9  # s (relative to t beyond 1 s): where the mode after an event is decided
 MAX_REPEATS = 50  # events at one instant before the run stops as inconsistent
@@ -120,14 +124,15 @@ def new_workspace(n):
     cost more than the mechanics (bench/stack.py). Layout: the frame of
     :func:`rocking.stack.kinematics.forward` (A, β, C, X, Ẋ, Θ, Θ̇), then M, f, z̈, the four
     scratch arrays of :func:`rocking.stack.modes.solve_mode_in`, then dy, Λ, a state-sized work
-    array, Λ at the end of the last step, and the moving components of the state and their count
-    (:func:`_moving`)."""
+    array, Λ at the end of the last step, the moving components of the state and their count
+    (:func:`_moving`), and the far-corner gaps read from their lift-off (:func:`mark_lift_offs`)."""
     nz = 3 * n
     A, beta, C, X, Xd, th, thd = new_frame(n)
     return (A, beta, C, X, Xd, th, thd, np.zeros((nz, nz)), np.zeros(nz), np.zeros(nz),
             np.zeros(nz, dtype=np.bool_), np.zeros(nz, dtype=np.int64), np.zeros(nz, dtype=np.int64),
             np.zeros((nz, nz)), np.zeros(nz), np.zeros(2 * nz + 2), np.zeros(nz), np.zeros(2 * nz + 2),
-            np.zeros(nz), np.zeros(2 * nz + 2, dtype=np.int64), np.zeros(1, dtype=np.int64))
+            np.zeros(nz), np.zeros(2 * nz + 2, dtype=np.int64), np.zeros(1, dtype=np.int64),
+            np.zeros((n, 7)))
 
 
 @njit(cache=True, _nrt=False)
@@ -184,6 +189,7 @@ def guards_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, g, held, ws):
     dy, lam = ws[WS_DY], ws[WS_LAM]
     evaluate_at(P, ends, anchor, nstate, tstate, ah, av, y, gravity, dy, lam, ws)
     guards_from(P, ends, anchor, nstate, tstate, y, lam, g, held)
+    resolve_gaps(P, ends, anchor, nstate, y, g, ws)
 
 
 @njit(cache=True, _nrt=False)
@@ -410,6 +416,8 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
     extra = np.zeros(nz)
     ws = new_workspace(n)
     moving, n_moving = ws[WS_ACT], ws[WS_N_ACT]  # (_moving fills them before every step)
+    n_was = np.empty(n, dtype=np.int64)  # the modes and anchors before a mode decision
+    anchor_was = anchor.copy()
     n_grid = int(math.floor(t_end / save_dt + 1e-9)) + 1
     cap = n_grid + 2 * max_events + 4
     ncol = 1 + N_BLOCK_COLS * n + N_IFACE_COLS * n + N_TAIL
@@ -457,6 +465,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
         status = STATUS_INCONSISTENT
     y[:nz] = zv
     y[nz:2 * nz] = zdv
+    mark_lift_offs(P, ends, anchor, nstate, geo, anchor0, -1, y, ws)
     e0 = _energy_of(P, ends, anchor, y, gravity)
     _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
     h = min(max_step, 1e-3)
@@ -519,6 +528,8 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                     geo[j] = nstate[j]
                 zv = y[:nz].copy()
                 zdv = y[nz:2 * nz].copy()
+                n_was[:] = nstate
+                anchor_was[:] = anchor
                 code = _select_ahead(P, ends, anchor, geo, t, zv, zdv, loc, gravity, extra, nstate, tstate, -1, 0,
                                      tol_force, tol_rate, x_sel, lam_sel, ws)
                 if code == SELECT_HELD:
@@ -528,6 +539,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                     break
                 y[:nz] = zv
                 y[nz:2 * nz] = zdv
+                mark_lift_offs(P, ends, anchor, nstate, n_was, anchor_was, -1, y, ws)
                 band_ok = False
                 g0_ok = False
                 k0_ok = False
@@ -587,10 +599,14 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             if first >= 0:
                 band_ok = False
                 k_ev = first // N_GUARD_SLOTS
+                n_was[:] = nstate
+                anchor_was[:] = anchor
                 status, d_impact, n_ev = _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k_ev,
                                                        first - k_ev * N_GUARD_SLOTS, tol_force, tol_rate,
                                                        rest_velocity, extra, x_sel, lam_sel, events, n_ev, d_impact,
                                                        summ, held, stop_at_edge, ws)
+                mark_lift_offs(P, ends, anchor, nstate, n_was, anchor_was,
+                               _impacted(k_ev, first - k_ev * N_GUARD_SLOTS, n_was), y, ws)
                 _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
                 if n_out < cap:
                     _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, n_out, ws)
@@ -640,6 +656,7 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             if sub == N_SUB:
                 # the step's last stage left the contact forces at its end in ws[WS_LAM_END]
                 guards_from(P, ends, anchor, nstate, tstate, y_new, ws[WS_LAM_END], g1, held)
+                resolve_gaps(P, ends, anchor, nstate, y_new, g1, ws)
                 for k in range(n):
                     need_q[k, sub] = _need_of(P, nstate, tstate, y_new, ws[WS_LAM_END], k)
             else:
@@ -701,7 +718,8 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                         break
                     if not opened and _is_gap(j, nstate):
                         guards_from(P, ends, anchor, nstate, tstate, y_new, ws[WS_LAM_END], gm, held)
-                        opened = gm[j] > 0.0 or _opened_below_rounding(P, ends, anchor, j, y, y_new, gm[j])
+                        resolve_gaps(P, ends, anchor, nstate, y_new, gm, ws)
+                        opened = gm[j] > 0.0 or _opened_below_rounding(P, ends, anchor, j, y, y_new, gm[j], ws)
                     if not opened and _is_gap(j, nstate):
                         # The corner never opens as far as the gap can be resolved (a rebound
                         # of ~1e-8 rad/s rises less than the rounding of the positions): it
@@ -785,9 +803,12 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
             k_ev = first // N_GUARD_SLOTS
             slot = first - k_ev * N_GUARD_SLOTS
+            n_was[:] = nstate
+            anchor_was[:] = anchor
             status, d_impact, n_ev = _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k_ev,
                                                    slot, tol_force, tol_rate, rest_velocity, extra, x_sel, lam_sel,
                                                    events, n_ev, d_impact, summ, held, stop_at_edge, ws)
+            mark_lift_offs(P, ends, anchor, nstate, n_was, anchor_was, _impacted(k_ev, slot, n_was), y, ws)
             if n_ev >= max_events and status == STATUS_COMPLETED:
                 status = STATUS_MAX_EVENTS
             if t == t_last_event:
@@ -1245,7 +1266,7 @@ def _overlap(xl, xr, bl):
 
 
 @njit(cache=True, _nrt=False)
-def _opened_below_rounding(P, ends, anchor, j, y, y_new, gap_end):
+def _opened_below_rounding(P, ends, anchor, j, y, y_new, gap_end, ws):
     """Whether the gap of guard j (a far corner's), which reads zero to the rounding of the
     positions at the step's end (``gap_end``, m), opened over the step from y to y_new to first
     order: ∇gap · Δ(a, φ, d), from differences of the interface's own coordinates, which resolve
@@ -1256,13 +1277,83 @@ def _opened_below_rounding(P, ends, anchor, j, y, y_new, gap_end):
     k = j // N_GUARD_SLOTS
     if j - k * N_GUARD_SLOTS != G_OTHER:
         return False  # an anchor's gap is its own coordinate d, resolved as it is
-    # the rounding of a corner's height: positions of the blocks' size (not the floor's half
-    # width, 1e300, which made every gap of the floor's interface "below the rounding")
-    if abs(gap_end) > 64.0 * 2.220446049250313e-16 * (P[k, P_HU] + P[k, P_HL] + 2.0 * P[k, P_BU]):
-        return False
+    if abs(gap_end) > _gap_rounding(P, k) or ws[WS_LIFT][k, LIFT_MARK] > 0.0:
+        return False  # (a marked gap is resolved from its lift-off: resolve_gaps)
+    return _gap_change(P, ends, anchor, k, y, y_new) > 0.0
+
+
+@njit(cache=True, _nrt=False, inline="always")
+def _gap_rounding(P, k):
+    """The rounding of the height of interface k's far corner, m: a difference of positions of
+    the blocks' size (not the floor's half width, 1e300, which made every gap of the floor's
+    interface "below the rounding")."""
+    return 64.0 * 2.220446049250313e-16 * (P[k, P_HU] + P[k, P_HL] + 2.0 * P[k, P_BU])
+
+
+@njit(cache=True, _nrt=False)
+def _gap_change(P, ends, anchor, k, y, ym):
+    """The change of interface k's far-corner gap from the state y to ym, to first order, m:
+    ∇gap(y) · Δ(a, φ, d), from differences of the interface's own coordinates."""
     i = 3 * k
     grad = end_gap_gradient(P, ends, anchor, k, y, 1 - anchor[k])
-    return grad[0] * (y_new[i] - y[i]) + grad[1] * (y_new[i + 1] - y[i + 1]) + grad[2] * (y_new[i + 2] - y[i + 2]) > 0.0
+    return grad[0] * (ym[i] - y[i]) + grad[1] * (ym[i + 1] - y[i + 1]) + grad[2] * (ym[i + 2] - y[i + 2])
+
+
+@njit(cache=True, _nrt=False)
+def mark_lift_offs(P, ends, anchor, nstate, n_was, anchor_was, k_hit, y, ws):
+    """After a mode decision at the state y: mark each interface whose far corner has just come
+    off (it was flat, its anchor changed, or it is ``k_hit``, the interface of an impact) and
+    reads zero to the rounding of its height, keeping its coordinates (a, φ, d) and the far gap's
+    gradient there; unmark each flat one. :func:`resolve_gaps` then reads a marked gap as its
+    first-order change since that lift-off (n_was, anchor_was: the modes and anchors before).
+
+    Why: a corner that just lifted can rise and come back down by less than the rounding of its
+    height, a difference of positions of the blocks' size. A statue set rocking 0.9 µs before a
+    record's sample, where the floor's acceleration turns back, tilts by 2e-16 rad (5e-17 m at
+    its corner) for 10 µs and lands; its corner read −1.1e-16 m throughout. No probe saw it
+    open, so it was closed again at once; the mode selection, a moment on, set it rocking again,
+    50 times at one instant, and the run stopped `inconsistent` (a random statue on a pedestal
+    under Landers; docs/theory/stack.md §7)."""
+    lift = ws[WS_LIFT]
+    nz = 3 * P.shape[0]
+    for k in range(P.shape[0]):
+        if nstate[k] == FLAT:
+            lift[k, LIFT_MARK] = 0.0
+            continue
+        if not (n_was[k] == FLAT or anchor[k] != anchor_was[k] or k == k_hit):
+            continue
+        lift[k, LIFT_MARK] = 0.0
+        if abs(end_gap(P, ends, anchor, k, y[:nz], y[nz:2 * nz], 1 - anchor[k])[0]) <= _gap_rounding(P, k):
+            grad = end_gap_gradient(P, ends, anchor, k, y, 1 - anchor[k])
+            lift[k, LIFT_MARK] = 1.0
+            for c in range(3):
+                lift[k, LIFT_AT + c] = y[3 * k + c]
+                lift[k, LIFT_GRAD + c] = grad[c]
+
+
+@njit(cache=True, _nrt=False)
+def resolve_gaps(P, ends, anchor, nstate, y, g, ws):
+    """In the guards g at the state y: the far-corner gap of each interface
+    :func:`mark_lift_offs` marked, where it reads zero to the rounding, is replaced by its
+    first-order change since the lift-off, ∇gap · Δ(a, φ, d), which resolves it."""
+    lift = ws[WS_LIFT]
+    for k in range(P.shape[0]):
+        if nstate[k] != FLAT and lift[k, LIFT_MARK] > 0.0:
+            j = k * N_GUARD_SLOTS + G_OTHER
+            if abs(g[j]) <= _gap_rounding(P, k):
+                i = 3 * k
+                g[j] = (lift[k, LIFT_GRAD] * (y[i] - lift[k, LIFT_AT])
+                        + lift[k, LIFT_GRAD + 1] * (y[i + 1] - lift[k, LIFT_AT + 1])
+                        + lift[k, LIFT_GRAD + 2] * (y[i + 2] - lift[k, LIFT_AT + 2]))
+
+
+@njit(cache=True, _nrt=False, inline="always")
+def _impacted(k, slot, nstate):
+    """k if the event of guard ``slot`` on interface k, in the modes nstate, is an impact (a corner
+    reaching the face: _handle_event), else −1."""
+    if (slot == G_OTHER and nstate[k] != FLAT) or (slot == G_ANCHOR and nstate[k] == OPEN):
+        return k
+    return -1
 
 
 @njit(cache=True, _nrt=False)
@@ -1547,7 +1638,7 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
     zd = y[nz:2 * nz].copy()
     i = 3 * k
     ah, av = _ground(loc, t)
-    impact = (slot == G_OTHER and nstate[k] != FLAT) or (slot == G_ANCHOR and nstate[k] == OPEN)
+    impact = _impacted(k, slot, nstate) >= 0
     xl, xr = corner_x(P, ends, anchor, k, z) if k >= 1 else (0.0, 0.0)
     if impact and k >= 1 and _overlap(xl, xr, P[k, P_BL]) <= 1e-9 * (P[k, P_HU] + P[k, P_BU]):
         # A block that tips over the edge below, its far corner sliding onto that edge: the
