@@ -401,29 +401,36 @@ def test_a_friction_at_which_the_pedestal_would_tip_is_not_recommended():
     """A squat statue (tan α = 0.83: it never rocks here) on a pedestal 0.3 m wide and 1 m tall
     (50 kg each), under a 3 m/s² (0.31 g) harmonic. While the pedestal rests it passes on the
     floor's acceleration, and the floor's reaction leaves its base once |a_g|/g > b₁(m₁ + m₂) /
-    (H₁(m₂ + m₁/2)) = 0.2 (derivation §3.5): the pedestal would tip, which this model does not
-    follow. A pedestal that slides passes on at most μs·g, so μs = 0.1 and 0.15 (0.18 at the top
-    of the ±20 % scatter) never tip, and μs = 0.3 and 0.5 (which hold it: 0.36 > 0.31) do. Every
-    candidate keeps the statue still (θ/α = 0), so the free space decided: until 2026-12-02 the
-    design recommended μs = 0.5, which needs none, and at which the pedestal tips. Now the
-    candidates that tip are not safe and are named, and 0.15 is recommended (the safe one that
-    slides least)."""
+    (m₁H₁/2 + m₂(H₁ + h₂)) = 1/7 (derivation §3.5; h₂ = 0.6 m, the statue's centre above its
+    base): the pedestal would tip, with the statue on it, which this model does not follow. A
+    pedestal that slides passes on at most μs·g, so μs = 0.1 (0.12 at the top of the ±20 %
+    scatter) never tips, μs = 0.15 tips at its nominal value and at the top of the scatter (0.15
+    and 0.18 > 1/7; at 0.12 it slides first), and μs = 0.3 and 0.5 (which hold it: 0.36 > 0.31)
+    tip at every level. Every candidate keeps the statue still (θ/α = 0), so the free space
+    decided: until 2026-12-02 the design recommended μs = 0.5, which needs none, and at which the
+    pedestal tips. Now the candidates that tip are not safe and are named, and 0.1 is recommended
+    (the only safe one). (Until 2026-12-06 the check left out the statue's own couple, read the
+    threshold as 0.2 g and recommended 0.15, at which the pedestal tips.)"""
     statue = rk.Statue(width=1.0, height=1.2, mass=50.0)
     pedestal = rk.Pedestal(mass=50.0, friction=rk.Friction(static=0.3, kinetic=0.24), width=0.3, height=1.0)
     motions = {"sine 3 m/s² 2 Hz": rk.Harmonic(amplitude=3.0, frequency=2.0, cycles=3, form="sin")}
     ds = friction_design(rk.System(statue=statue, pedestal=pedestal), motions, mu_s=[0.1, 0.15, 0.3, 0.5],
                          free_time=3.0, options=OPTS, workers=1)
-    assert ds.attrs["recommended_mu_s"] == 0.15
+    assert ds.attrs["recommended_mu_s"] == 0.1
     assert not ds.falls.values.any()
-    assert ds.pedestal_tips.values[:, 0, 0].tolist() == [False, False, True, True]
-    assert ds.safe.values[:, 0].tolist() == [True, True, False, False]
+    assert ds.pedestal_tips.values[:, 0, 0].tolist() == [False, True, True, True]
+    assert ds.safe.values[:, 0].tolist() == [True, False, False, False]
+    # held at every level: the first instant |a_g| = g/7, asin(g/(7A))/ω
+    tips_at = np.arcsin(G / 7.0 / 3.0) / (4 * np.pi)
     uplift = ds.scatter_pedestal_uplift_time.sel(mu_s=0.5, pedestal_mass=50.0).values.ravel()
-    # held at every level: the first instant |a_g| = 0.2 g, asin(0.2 g / A)/ω
-    np.testing.assert_allclose(uplift, np.arcsin(0.2 * G / 3.0) / (4 * np.pi), rtol=1e-12)
-    assert np.isnan(ds.scatter_pedestal_uplift_time.sel(mu_s=0.15).values).all()
+    np.testing.assert_allclose(uplift, tips_at, rtol=1e-12)
+    # μs = 0.15: slides first at its lowest level (0.12 g), held long enough to tip at the others
+    uplift = ds.scatter_pedestal_uplift_time.sel(mu_s=0.15, pedestal_mass=50.0).values.ravel()
+    assert np.isnan(uplift[0]) and np.allclose(uplift[1:], tips_at, rtol=1e-12)
+    assert np.isnan(ds.scatter_pedestal_uplift_time.sel(mu_s=0.1).values).all()
     report = design_report(ds)
     assert "the pedestal would tip" not in ds.attrs["verdict"]  # (a safe one is recommended)
-    assert report.count("| no (the pedestal tips under 1/1) |") == 2
+    assert report.count("| no (the pedestal tips under 1/1) |") == 3
     # with only the candidates that tip, nothing is recommended, and the report says why
     tipping = friction_design(rk.System(statue=statue, pedestal=pedestal), motions, mu_s=[0.3, 0.5],
                               free_time=3.0, options=OPTS, workers=1)

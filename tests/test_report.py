@@ -450,7 +450,9 @@ def test_legends_stay_off_the_data(case, request):
 def test_a_pedestal_that_would_tip_fails_its_check_and_the_verdict_is_not_shown_safe():
     """A squat statue on a pedestal 0.3 m wide and 1 m tall (50 kg each) that friction holds,
     under a 3 m/s² sine: nothing slides or rocks ("did not overturn"), but the floor's reaction
-    leaves the pedestal's base once |a_g| > 0.2 g (derivation §3.5), at asin(0.2 g / 3)/(4π) s.
+    leaves the pedestal's base once |a_g| > g/7 (derivation §3.5: b₁(m₁ + m₂)/(m₁H₁/2 +
+    m₂(H₁ + h₂)), the two tipping as one body; 0.2 g until 2026-12-06, when the statue's own
+    couple was left out), at asin(g/(7·3))/(4π) s.
     The report's check must fail there, and its verdict must not be coloured safe; on a pedestal
     1 m wide it passes, and a pedestal without a height is not checked."""
     statue = rk.Statue(width=1.0, height=1.2, mass=50.0)
@@ -464,7 +466,7 @@ def test_a_pedestal_that_would_tip_fails_its_check_and_the_verdict_is_not_shown_
         return r, found[name]
 
     narrow, c = check(width=0.3, height=1.0)
-    t = math.asin(0.2 * 9.81 / 3.0) / (4 * math.pi)
+    t = math.asin(9.81 / 7.0 / 3.0) / (4 * math.pi)
     assert narrow.summary()["verdict"].startswith("did not overturn")
     assert (c.result, c.value, c.limit) == (FAIL, f"leaves its base at t = {t:.2f} s", "|x_N| ≤ 0.15 m, half its width")
     assert narrow.summary()["pedestal_uplift_time"] == pytest.approx(t, abs=1e-12)

@@ -412,19 +412,20 @@ def test_spectrum_command(tmp_path, capsys):
 def test_a_pedestal_that_would_tip_fails_the_scan_where_it_first_would():
     """A squat statue (tan α = 0.833) on a pedestal 0.3 m wide and 1 m tall (50 kg each) that
     friction (μs = 0.8) holds, under one-sine pulses. The statue moves with the floor; the floor's
-    reaction leaves the pedestal's base once |a_g|/g > b₁(m₁ + m₂)/(H₁(m₂ + m₁/2)) = 0.2
-    (derivation §3.5), so the pedestal would tip from a_p/(g tan α) = 0.2/0.833 = 0.24 on, at
-    every β (the pulse reaches its peak), far below where the statue could rock (1). That fails
-    the scan (a fall risk the two-body model does not follow), and the report says so. Until
-    2026-12-02 runs below a_p = g tan α were skipped as "nothing can happen" and the spectrum
-    said "none up to 1"."""
+    reaction leaves the pedestal's base once |a_g|/g > b₁(m₁ + m₂)/(m₁H₁/2 + m₂(H₁ + h₂)) = 1/7
+    (derivation §3.5, h₂ = 0.6 m the statue's centre above its base), so the pedestal would tip
+    from a_p/(g tan α) = (1/7)/0.833 = 0.1714 on, at every β (the pulse reaches its peak), far
+    below where the statue could rock (1). That fails the scan (a fall risk the two-body model
+    does not follow), and the report says so. Until 2026-12-02 runs below a_p = g tan α were
+    skipped as "nothing can happen" and the spectrum said "none up to 1"; until 2026-12-06 the
+    check left out the statue's own couple and the boundary read 0.24."""
     from rocking.analyses.spectra import spectrum_report
 
     statue = rk.Statue(width=1.0, height=1.2, mass=50.0)
     pedestal = rk.Pedestal(mass=50.0, friction=rk.Friction(static=0.8, kinetic=0.7), width=0.3, height=1.0)
     ds = overturning_spectrum(rk.System(statue=statue, pedestal=pedestal), "sine", [1.0, 3.0],
                               amplitude_range=(0.1, 1.0), n_scan=10, rtol=1e-4, free_time=2.0, options=OPTS, workers=1)
-    np.testing.assert_allclose(ds.amplitude_ratio.values[0], 0.2 * 1.2, rtol=2e-4)
+    np.testing.assert_allclose(ds.amplitude_ratio.values[0], 1.2 / 7.0, rtol=2e-4)
     assert int(ds.pedestal_tips_runs.sum()) > 0
     assert "runs the pedestal would tip" in spectrum_report(ds)
 

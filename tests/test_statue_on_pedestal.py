@@ -429,15 +429,18 @@ def _rest_motion(kind):
 
 @pytest.mark.parametrize("kind", ["sin", "ricker", "record-with-vertical"])
 def test_the_uplift_warning_of_a_tall_narrow_pedestal_under_a_resting_statue(kind):
-    """A squat statue (50 kg) on a pedestal 0.3 m wide and 1 m tall (50 kg) that μs = 0.8 holds:
-    nothing slides or rocks, but the floor's normal force moves off the pedestal's base. At rest,
-    moments about the base centre give |x_N| = |a_h|·H₁·(m₂ + m₁/2) / ((m₁ + m₂)(g + a_v)), so
-    it leaves the half-width b₁ = 0.15 m when |a_h|/(g + a_v) > b₁(m₁ + m₂)/(H₁(m₂ + m₁/2)) =
-    0.2. The run must warn that the pedestal would uplift, from that first instant (brentq on
-    the motion's formulas; 1e-12 s as for the top slip above), and not at all on a pedestal 0.6 m
-    wide (0.4 > every |a_h|/(g + a_v) here). Until 2026-12-02 the check was made only while the
-    statue rocked: the verdict "did not overturn; at rest" came with no warning, for a pedestal
-    that tips."""
+    """A squat statue (1.0 × 1.2 m, 50 kg) on a pedestal 0.3 m wide and 1 m tall (50 kg) that
+    μs = 0.8 holds: nothing slides or rocks, but the floor's normal force moves off the
+    pedestal's base. At rest the two move as one body, and moments about the base centre give
+    |x_N| = |a_h|·(m₁H₁/2 + m₂(H₁ + h₂)) / ((m₁ + m₂)(g + a_v)) (h₂ = 0.6 m, the statue's centre
+    above its base), so it leaves the half-width b₁ = 0.15 m when |a_h|/(g + a_v) >
+    b₁(m₁ + m₂)/(m₁H₁/2 + m₂(H₁ + h₂)) = 1/7. The run must warn that the pedestal would uplift,
+    from that first instant (brentq on the motion's formulas; 1e-12 s as for the top slip above),
+    and not at all on a pedestal 0.9 m wide (3/7 > 0.4 > every |a_h|/(g + a_v) here). Until
+    2026-12-02 the check was made only while the statue rocked: the verdict "did not overturn; at
+    rest" came with no warning, for a pedestal that tips. Until 2026-12-06 it left out the
+    statue's own couple on the pedestal (m₂h₂ of the moment arm; the threshold read 0.2) and
+    warned late or not at all."""
     motion = _rest_motion(kind)
 
     def run(width):
@@ -448,14 +451,45 @@ def test_the_uplift_warning_of_a_tall_narrow_pedestal_under_a_resting_statue(kin
     from rocking.solver import compiled as C
     r = run(0.3)
     assert r.events == [] and r.summary()["first_rocking_time"] is None
-    want = _first_rest_excess(motion, 0.15 * 100.0 / (1.0 * 75.0))
+    want = _first_rest_excess(motion, 0.15 * 100.0 / (50.0 * 1.0 / 2 + 50.0 * (1.0 + 0.6)))
     assert want > 0.01
     (up,) = [w for w in r.warnings if "uplift" in w]
     assert up.startswith(f"from t = {want:.4f} s")
     assert r.raw_summary[C.S_UPLIFT] == pytest.approx(want, abs=1e-12)
-    wide = run(0.6)
+    wide = run(0.9)
     assert wide.summary()["required_top_friction"] < 0.4
     assert np.isnan(wide.raw_summary[C.S_UPLIFT]) and not any("uplift" in w for w in wide.warnings)
+
+
+def test_a_pedestal_and_a_resting_statue_tip_as_one_when_the_stack_engine_lifts_the_pedestal():
+    """A 0.47 × 0.86 m statue (259 kg) on a 0.80 × 0.94 m pedestal (345 kg, μs = 0.52) under Kobe
+    at 6.9 m/s² (seed 3's run 213 of bench/verdict_scan.py). The statue would rock at
+    g·b/h = 5.35 m/s² and the pedestal slide at μs·g = 5.13, but the two tip as one body about
+    the pedestal's corner first, when |a_h| reaches g·b₁(m₁ + m₂)/(m₁H₁/2 + m₂(H₁ + h₂)) =
+    4.584 m/s² (issue 11's onset formula), at 2.736 s: the general engine (rocking.stack, which
+    shares no physics code with the two-body solver) rocks the pedestal there, and its statue
+    later falls. The two-body model, whose pedestal cannot rock, must warn of the uplift at that
+    instant (to 1e-9 s; measured 1e-13). Until 2026-12-06 its moment balance at rest left out the
+    statue's own couple on the pedestal, its threshold read 5.85 m/s², which the pedestal's
+    slips kept it below, and the run said "did not overturn" with no warning at all."""
+    from rocking.io.records import read_record
+    from rocking.stack import Block, Interface, Stack, simulate_stack
+
+    (w1, h1, m1), (w2, h2, m2) = (0.8023499127013874, 0.9418190859594764, 344.83202135531354), \
+        (0.47036109298562767, 0.8627652197572526, 259.3580231095145)
+    friction = rk.Friction(static=0.5232158975772888, kinetic=0.508028597928443)
+    motion = read_record("Kobe1995_Takatori_000").trimmed(20.0).scaled(pga=6.923437609423012)
+    system = rk.System(statue=rk.Statue(width=w2, height=h2, mass=m2),
+                       pedestal=rk.Pedestal(mass=m1, friction=friction, width=w1, height=h1))
+    two = rk.simulate(system, motion)
+    stack = simulate_stack(Stack(blocks=(Block(width=w1, height=h1, mass=m1), Block(width=w2, height=h2, mass=m2)),
+                                 interfaces=(Interface(friction=friction), Interface())), motion)
+    onset = stack.blocks[0]["first_rocking_time"]
+    assert 2.73 < onset < 2.74 and stack.blocks[0]["first_sliding_time"] > onset
+    a_up = 9.80665 * (w1 / 2) * (m1 + m2) / (m1 * h1 / 2 + m2 * (h1 + h2 / 2))  # (the default gravity)
+    assert abs(float(motion.acceleration(np.array([onset]))[0])) == pytest.approx(a_up, rel=1e-9)
+    assert two.summary()["pedestal_uplift_time"] == pytest.approx(onset, abs=1e-9)
+    assert any("uplift" in w for w in two.warnings)
 
 
 def _moving_case(case):

@@ -547,12 +547,33 @@ def _x_n_expression():
     return _CACHE[key]
 
 
-def pedestal_center_of_pressure(params: dict, H1: float, s: int, Px: float, Py: float, N: float,
+def _x_n_rest_expression():
+    """x_N while the statue rests on the pedestal (no rocking): its reaction acts at x_p, which
+    the statue's own moment balance about its centre of mass (0, H1 + h) fixes, since it does
+    not rotate: (x_p, -h) x P = 0; then the pedestal's balance as above, with -P at (x_p, H1).
+    Returns x_N(h, Px, Py, N, a_abs)."""
+    key = ("xN rest",)
+    if key not in _CACHE:
+        Px_, Py_, N_, a_, xN, xp = sp.symbols("P_x P_y N a_abs x_N x_p", real=True)
+        x_p = sp.solve(sp.Eq(xp * Py_ - (-h) * Px_, 0), xp)[0]
+        mom_P = x_p * (-Py_) - H1 * (-Px_)
+        mom_inertia = -(H1 / 2) * (m1 * a_)
+        sol = sp.solve(sp.Eq(xN * N_ + mom_P, mom_inertia), xN)[0]
+        _CACHE[key] = (sp.lambdify((h, H1, m1, Px_, Py_, N_, a_), sol, modules="math"), sol)
+    return _CACHE[key]
+
+
+def pedestal_center_of_pressure(params: dict, H1: float, s: int | None, Px: float, Py: float, N: float,
                                 a_abs: float) -> float:
     """Horizontal position (m) of the floor's resultant normal force relative to the pedestal's
     centre line, for a pedestal of height H1 with its centre of mass at H1/2; a_abs is the
     pedestal's absolute horizontal acceleration a_g + u_ddot.  The pedestal uplifts if |x_N|
-    exceeds its half-width.  Agrees with derivation.md 3.5:
-    x_N = [s b Py - H1 Px - (H1/2) m1 a_abs] / N."""
+    exceeds its half-width.  While the statue rocks (s = ±1) this is derivation.md 3.5's
+    x_N = [s b Py - H1 Px - (H1/2) m1 a_abs] / N; while it rests (s None or 0) the statue's
+    reaction acts where its own moment balance puts it (_x_n_rest_expression), which that
+    formula, read at s = 0, leaves out."""
+    if not s:
+        fn, _ = _x_n_rest_expression()
+        return float(fn(float(params["h"]), H1, float(params["m1"]), Px, Py, N, a_abs))
     fn, _ = _x_n_expression()
     return float(fn(s, float(params["b"]), H1, float(params["m1"]), Px, Py, N, a_abs, 0.0))

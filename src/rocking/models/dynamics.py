@@ -165,10 +165,21 @@ def pressure_centre(p, s, a, udd, px, py, n):
 def pressure_moment(p, s, a, udd, px, py):
     """N·x_N, N·m: the moment about the pedestal's base centre that the floor's normal force
     must balance (the numerator of :func:`pressure_centre`); 0 when the pedestal height is not
-    given (no moment known)."""
+    given (no moment known).
+
+    The statue's base force (−Px, −Py on the pedestal) acts at its pivot, x = s·b, while it
+    rocks. While it rests on the pedestal (s = 0) it acts where the statue's own moment balance
+    puts it, x_p·Py = −h·Px (h = R·cos α, the height of the statue's centre above its base), so
+    that the pedestal and the statue tip as one body: at rest |x_N| = |a_g|·(m1·H1/2 +
+    m2·(H1 + h))/((m1 + m2)·G). Until 2026-12-06 that couple was left out (the force taken at
+    x = 0, as derivation.md §3.5 writes it for s = 0): the check at rest saw only m2·H1 of the
+    statue's moment arm and missed uplifts (a 0.80 × 0.94 m pedestal under a 259 kg statue
+    tips as one at 0.467 g, where the check said 0.596 g; docs/theory/derivation.md §3.5)."""
     h1 = p[PED_HEIGHT]
     if h1 <= 0.0:
         return 0.0
+    if s == 0:
+        return -(h1 + p[R] * math.cos(p[ALPHA])) * px - 0.5 * h1 * p[M1] * (a + udd)
     return s * p[B] * py - h1 * px - 0.5 * h1 * p[M1] * (a + udd)
 
 

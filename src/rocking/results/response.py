@@ -356,8 +356,8 @@ class Response:
                 p, int(sig[i]), int(s[i]), self.u_dot[i], self.theta[i], self.theta_dot[i], a_g[i], a_v[i]
             )
             out["F"][i], out["N"][i], out["Px"][i], out["Py"][i] = f, nn, px, py
-            out["x_N"][i] = pressure_centre(p, int(s[i]), a_g[i], udd, px, py, nn) if s[i] else np.nan
-            out["N_x_N"][i] = pressure_moment(p, int(s[i]), a_g[i], udd, px, py) if s[i] else 0.0
+            out["x_N"][i] = pressure_centre(p, int(s[i]), a_g[i], udd, px, py, nn)
+            out["N_x_N"][i] = pressure_moment(p, int(s[i]), a_g[i], udd, px, py)
         with np.errstate(divide="ignore", invalid="ignore"):
             out["top_friction_ratio"] = np.where(out["Py"] > 0, np.abs(out["Px"]) / out["Py"], np.inf)
         return out
