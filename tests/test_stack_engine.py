@@ -1196,6 +1196,40 @@ def test_a_block_set_rocking_just_before_a_sample_where_the_floor_turns_back_lan
         assert r.summary()["blocks"][0]["peak_rotation"] == 0.0 and r.events[0, 1] == r.events[1, 1] == 1
 
 
+@pytest.mark.parametrize("excess", [1e-7, 1e-6, 1e-5])
+def test_a_block_at_a_harmonic_crest_just_above_its_threshold_rocks_lands_and_peaks_as_its_closed_form_says(
+        excess):
+    """A block 0.3 × 1.2 m under a sine whose crest exceeds the rocking threshold g·b/h by 1e-7
+    to 1e-5 m/s². Near the crest a − g·b/h = ε − kτ² (τ from the crest, k = Aω²/2), so the
+    linear rocking I₀φ̈ = m·h·(a − g·b/h) gives, with s the time since the onset at τ = −τ_h
+    (τ_h = √(ε/k)): φ ∝ −s⁴/12 + τ_h·s³/3, which peaks at s = 3τ_h at 2.25·c·k·τ_h⁴
+    (c = 3h/(4(b² + h²))) and lands at s = 4τ_h: 1.4e-16 to 1.4e-12 rad for 91 to 910 µs. The
+    floor motion is not linear, so the onset is a step's event, not the rest's jump to a
+    guard's root, and the whole rock fits in one step. Until 2026-12-06 the turning point of a
+    rotation whose rate starts at exactly zero was never searched: the peak read as the step's
+    ends, 1.5e-17 rad for 1.4e-12. Tolerances: the onset to 1e-12 s; the landing to 3e-8 s and
+    the peak to 2e-17 rad, the integrator's absolute accuracy at these amplitudes (measured:
+    2e-8, 6e-9 and 4e-10 s; 2e-19, 2e-18 and 1e-17 rad; the parabola's neglected quartic term
+    moves the landing by less than 1e-6 of 4τ_h). The trough, half a period later, mirrors it."""
+    g, b, h, f = 9.80665, 0.15, 0.6, 2.0
+    w, a_thr = 2 * math.pi * f, g * b / h
+    amplitude = a_thr + excess
+    motion = rocking.Harmonic(amplitude=amplitude, frequency=f, cycles=1, form="sin")
+    r = simulate_stack(Stack(blocks=(Block(width=2 * b, height=2 * h, mass=100.0),), interfaces=(Interface(),)),
+                       motion, duration=0.5)
+    assert r.status == "completed", r.verdict
+    t1 = math.asin(a_thr / amplitude) / w
+    th = 0.25 / f - t1
+    k, c = amplitude * w * w / 2, 3 * h / (4 * (b * b + h * h))
+    assert len(r.events) == 4 and list(r.events[:, 2]) in ([0, -1, 0, -1], [1, -1, 1, -1], [0, -1, 1, -1],
+                                                             [1, -1, 0, -1])
+    for half in (0, 1):
+        onset, landing = r.events[2 * half, 0] - half / (2 * f), r.events[2 * half + 1, 0] - half / (2 * f)
+        assert abs(onset - t1) < 1e-12
+        assert abs(landing - (t1 + 4 * th)) < 3e-8
+    assert abs(r.summary()["blocks"][0]["peak_rotation"] - 2.25 * c * k * th ** 4) < 2e-17
+
+
 def test_a_block_overturning_about_the_corner_of_a_narrower_one_below_lies_along_its_side_not_in_it():
     """A random stack (seed 3's 131st of the tests' random stacks): a block 0.71 m wide rocks about
     the corner of the 0.35 m base under it (Northridge × 0.97 with a vertical part, 0.22 × the

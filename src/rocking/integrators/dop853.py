@@ -449,12 +449,12 @@ def dense_sum(y, F, x, first, stride, count):
 
 
 @njit(cache=True, _nrt=False)
-def dense_sum_root(y, F, first, stride, count, f_lo, f_hi, x_hi):
-    """Fraction of the step in [0, x_hi] where :func:`dense_sum` changes sign, given its values
-    f_lo at 0 and f_hi at x_hi of opposite signs: the Illinois method, to 1e-10 of the step. (Used
-    for the turning points of a rotation, where the angle is insensitive to the position to first
-    order.)"""
-    lo, hi = 0.0, x_hi
+def dense_sum_root(y, F, first, stride, count, f_lo, f_hi, x_hi, x_lo=0.0):
+    """Fraction of the step in [x_lo, x_hi] where :func:`dense_sum` changes sign, given its values
+    f_lo at x_lo and f_hi at x_hi of opposite signs: the Illinois method, to 1e-10 of the step.
+    (Used for the turning points of a rotation, where the angle is insensitive to the position to
+    first order.)"""
+    lo, hi = x_lo, x_hi
     side = 0
     for _ in range(100):
         x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)

@@ -1033,9 +1033,22 @@ def _peaks_inside(P, y, F, x_end, summ):
             first, count = (1, k + 1) if absolute else (3 * k + 1, 1)
             f_lo = dop853.dense_sum(y, F, 0.0, nz + first, 3, count)
             f_hi = dop853.dense_sum(y, F, x_end, nz + first, 3, count)
+            x_lo = 0.0
+            if f_lo == 0.0 and f_hi != 0.0:
+                # A rate that starts at exactly zero (a rocking that starts from rest): the sign
+                # it takes inside the step, read from the middle back towards the start. A rock
+                # that lifts, turns and lands within one step was otherwise never searched: a
+                # block set rocking at a harmonic's crest by 1e-5 m/s² above its threshold, which
+                # peaks at 1.4e-12 rad, read 1.5e-17 (the step's ends).
+                x_lo = 0.5 * x_end
+                for _ in range(30):
+                    f_lo = dop853.dense_sum(y, F, x_lo, nz + first, 3, count)
+                    if f_lo != 0.0 and (f_lo > 0.0) != (f_hi > 0.0):
+                        break
+                    x_lo *= 0.5
             if not ((f_lo > 0.0 and f_hi < 0.0) or (f_lo < 0.0 and f_hi > 0.0)):
                 continue
-            x = dop853.dense_sum_root(y, F, nz + first, 3, count, f_lo, f_hi, x_end)
+            x = dop853.dense_sum_root(y, F, nz + first, 3, count, f_lo, f_hi, x_end, x_lo)
             angle = abs(dop853.dense_sum(y, F, x, first, 3, count))
             slot = B_PEAK_ABS_THETA if absolute else B_PEAK_PHI
             if angle > summ[k, slot]:
