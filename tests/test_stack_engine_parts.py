@@ -1233,10 +1233,7 @@ def test_a_far_corner_that_lifts_within_the_rounding_is_read_from_its_lift_off()
     rng = np.random.default_rng(36)
     checked = 0
     while checked < 30:
-        state = random_state(rng, ACCELERATION)
-        if state is None:
-            continue
-        P, ends, anchor, geo, z, zd, _ = state
+        P, ends, anchor, geo, _, _, z, zd = _state_in_a_mode(rng)
         n = P.shape[0]
         for k in range(n):
             if geo[k] != ROCK:

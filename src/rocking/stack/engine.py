@@ -599,14 +599,10 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             if first >= 0:
                 band_ok = False
                 k_ev = first // N_GUARD_SLOTS
-                n_was[:] = nstate
-                anchor_was[:] = anchor
                 status, d_impact, n_ev = _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k_ev,
                                                        first - k_ev * N_GUARD_SLOTS, tol_force, tol_rate,
                                                        rest_velocity, extra, x_sel, lam_sel, events, n_ev, d_impact,
                                                        summ, held, stop_at_edge, ws)
-                mark_lift_offs(P, ends, anchor, nstate, n_was, anchor_was,
-                               _impacted(k_ev, first - k_ev * N_GUARD_SLOTS, n_was), y, ws)
                 _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
                 if n_out < cap:
                     _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, samples, n_out, ws)
@@ -803,12 +799,9 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
             k_ev = first // N_GUARD_SLOTS
             slot = first - k_ev * N_GUARD_SLOTS
-            n_was[:] = nstate
-            anchor_was[:] = anchor
             status, d_impact, n_ev = _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k_ev,
                                                    slot, tol_force, tol_rate, rest_velocity, extra, x_sel, lam_sel,
                                                    events, n_ev, d_impact, summ, held, stop_at_edge, ws)
-            mark_lift_offs(P, ends, anchor, nstate, n_was, anchor_was, _impacted(k_ev, slot, n_was), y, ws)
             if n_ev >= max_events and status == STATUS_COMPLETED:
                 status = STATUS_MAX_EVENTS
             if t == t_last_event:
@@ -1360,15 +1353,6 @@ def resolve_gaps(P, ends, anchor, nstate, y, g, ws):
                         + lift[k, LIFT_GRAD + 2] * (y[i + 2] - lift[k, LIFT_AT + 2]))
 
 
-@njit(cache=True, _nrt=False, inline="always")
-def _impacted(k, slot, nstate):
-    """k if the event of guard ``slot`` on interface k, in the modes nstate, is an impact (a corner
-    reaching the face: _handle_event), else −1."""
-    if (slot == G_OTHER and nstate[k] != FLAT) or (slot == G_ANCHOR and nstate[k] == OPEN):
-        return k
-    return -1
-
-
 @njit(cache=True, _nrt=False)
 def _is_gap(j, nstate):
     """Whether guard j is the gap of a corner that is open (m), not a force or a slip."""
@@ -1651,7 +1635,7 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
     zd = y[nz:2 * nz].copy()
     i = 3 * k
     ah, av = _ground(loc, t)
-    impact = _impacted(k, slot, nstate) >= 0
+    impact = (slot == G_OTHER and nstate[k] != FLAT) or (slot == G_ANCHOR and nstate[k] == OPEN)
     xl, xr = corner_x(P, ends, anchor, k, z) if k >= 1 else (0.0, 0.0)
     if impact and k >= 1 and _overlap(xl, xr, P[k, P_BL]) <= 1e-9 * (P[k, P_HU] + P[k, P_BU]):
         # A block that tips over the edge below, its far corner sliding onto that edge: the
@@ -1666,6 +1650,7 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
         return STATUS_OVERTURNED, d_impact, n_ev
     n_before = nstate.copy()
     t_before_state = tstate.copy()
+    anchor_before = anchor.copy()
     for j in range(n):
         geo[j] = nstate[j]
     if impact:
@@ -1904,4 +1889,5 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
             n_ev = _record(events, n_ev, t, j, EVENT_FOLLOWS, nstate[j], tstate[j], 0.0)
     if code != SELECT_OK:
         return STATUS_INCONSISTENT, d_impact, n_ev
+    mark_lift_offs(P, ends, anchor, nstate, n_before, anchor_before, k if impact else -1, y, ws)
     return 0, d_impact, n_ev
