@@ -320,7 +320,7 @@ def summaries_dataset(raw: np.ndarray, alphas: np.ndarray, *, dims: tuple[str, .
     ds = xr.Dataset(data, coords=coords or {})
     units = {"overturn_time": "s", "exceeded_alpha_time": "s", "peak_rotation": "rad", "peak_sliding": "m",
              "residual_sliding": "m", "first_rocking_time": "s", "first_sliding_time": "s", "end_time": "s",
-             "top_slip_time": "s", "pedestal_uplift_time": "s"}
+             "top_slip_time": "s", "pedestal_uplift_time": "s", "impact_beyond_friction_time": "s"}
     for key, unit in units.items():
         ds[key].attrs["units"] = unit
     return ds

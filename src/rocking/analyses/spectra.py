@@ -46,7 +46,7 @@ import numpy as np
 from ..excitation.harmonic import Harmonic
 from ..excitation.pulses import CosinePulse, RickerPulse, SinePulse
 from ..models.bodies import System
-from ..results.response import LIFTED_OFF, status_of
+from ..results.response import IMPACT_BEYOND_FRICTION, LIFTED_OFF, status_of
 from ..simulation import Options
 from ..solver import compiled as C
 from ..stack.model import Stack
@@ -147,6 +147,11 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
     if status_of(raw)[0] == LIFTED_OFF:
         counter[4 if not math.isnan(raw[C.S_UPLIFT]) else 5] += 1
         return True
+    if status_of(raw)[0] == IMPACT_BEYOND_FRICTION:
+        # an impact held the block by more floor friction than there is (results.response.
+        # held_impact_time): what follows is not a result, so, as a lift-off, not shown to stand
+        counter[6] += 1
+        return True
     if status in (C.STATUS_SINGULAR, C.STATUS_STEP_FAILED, C.STATUS_MAX_EVENTS):
         if task.criterion == "exceed" and not math.isnan(raw[C.S_EXCEED_TIME]):
             return True  # it had passed α before the solver stopped: that much is known
@@ -242,9 +247,10 @@ def _spectrum_chunk(task: SpectrumTask) -> dict[str, np.ndarray]:
         "slid_off_runs": np.zeros(nf, dtype=np.int64),
         "pedestal_tips_runs": np.zeros(nf, dtype=np.int64),
         "lifted_off_runs": np.zeros(nf, dtype=np.int64),
+        "impact_beyond_friction_runs": np.zeros(nf, dtype=np.int64),
     }
     for k, beta in enumerate(task.frequency_ratios):
-        counter = [0, 0, 0, 0, 0, 0]
+        counter = [0, 0, 0, 0, 0, 0, 0]
 
         def fails(A: float, beta: float = beta) -> bool:
             return _fails(task, A, beta, g_tan_alpha, p, counter, options)
@@ -277,7 +283,7 @@ def _spectrum_chunk(task: SpectrumTask) -> dict[str, np.ndarray]:
             n_isl += 1
         out["n_islands"][k] = n_isl
         (out["runs"][k], out["failed_runs"][k], out["undetermined_runs"][k], out["slid_off_runs"][k],
-         out["pedestal_tips_runs"][k], out["lifted_off_runs"][k]) = counter
+         out["pedestal_tips_runs"][k], out["lifted_off_runs"][k], out["impact_beyond_friction_runs"][k]) = counter
     return out
 
 
@@ -366,7 +372,9 @@ def overturning_spectrum(
         ``pedestal_tips_runs`` (a pedestal of given width and height would tip, which the
         two-body model does not follow: counted as failing under every criterion) and
         ``lifted_off_runs`` (a body would leave its support while the statue stands, status
-        ``lifted_off``: counted as failing too).
+        ``lifted_off``: counted as failing too) and ``impact_beyond_friction_runs`` (an impact
+        needed more floor friction than μs and the two-body model held the block anyway, status
+        ``impact_beyond_friction``: counted as failing too).
 
     Notes
     -----
@@ -439,6 +447,7 @@ def overturning_spectrum(
         "slid_off_runs": np.zeros((ns, nb), dtype=np.int64),
         "pedestal_tips_runs": np.zeros((ns, nb), dtype=np.int64),
         "lifted_off_runs": np.zeros((ns, nb), dtype=np.int64),
+        "impact_beyond_friction_runs": np.zeros((ns, nb), dtype=np.int64),
     }
     for (si, r), part in zip(index, parts):
         for key, arr in full.items():
@@ -476,6 +485,9 @@ def overturning_spectrum(
             "lifted_off_runs": (dims, full["lifted_off_runs"], {
                 "long_name": "runs where a body would leave its support while the statue stands, which the "
                              "two-body model does not follow (counted as failing)"}),
+            "impact_beyond_friction_runs": (dims, full["impact_beyond_friction_runs"], {
+                "long_name": "runs where an impact needed more floor friction than μs, which the two-body model's "
+                             "impact law cannot give (counted as failing)"}),
         },
         coords={
             "pulse": np.array(shapes, dtype=str),
@@ -627,6 +639,12 @@ def spectrum_report(ds, *, title: str = "Overturning spectra", chart: str | None
         lines += [f"**In {lifting} of {runs} runs a body would leave its support while the statue stood (the "
                   "floor's or the statue's base force reached zero), which this model does not follow: counted as "
                   "failing (a fall risk).** A stack of blocks (the stack engine) follows the flight.", ""]
+    held = int(ds.impact_beyond_friction_runs.sum()) if "impact_beyond_friction_runs" in ds else 0
+    if held:
+        lines += [f"**In {held} of {runs} runs an impact needed more floor friction than μs, which the two-body "
+                  "model's impact law cannot give (it held the block anyway): counted as failing.** A restitution "
+                  "well below Housner's does this on a low friction; a stack of blocks (the stack engine) solves "
+                  "such impacts with friction at both corners.", ""]
     lines += ["## Boundary", "", "a_p/(g tan α) of the smallest amplitude that fails; \"none up to "
               f"{top:.3g}\": no overturning in the scanned range; ⁺: safe islands above the boundary (listed below).",
               "", "| β = ω_p/p | " + " | ".join(_MOTION_TITLES.get(m, m) for m in pulses) + " |",

@@ -44,8 +44,11 @@ def impact_coulomb(i_o, m_tot, m2, b, h, r, mu_s, mu_k, can_slide, u_dot, theta_
     """Angular momentum about the new pivot + Coulomb floor impulse. Returns (u̇⁺, θ̇⁺, Fx, Fy, ok).
 
     ``r`` is θ̇⁺/θ̇⁻ for a pedestal held in place (Housner's 1 − 1.5 sin²α when the user has not
-    set it), so that I_O·θ̇⁺ + m2·h·u̇⁺ = r·I_O·θ̇⁻ + m2·h·u̇⁻. ``ok`` is False when no sliding
-    direction is consistent (not seen for μk < 2/3).
+    set it), so that I_O·θ̇⁺ + m2·h·u̇⁺ = r·I_O·θ̇⁻ + m2·h·u̇⁻. ``ok`` is False when no outcome is
+    consistent: a held one whose θ̇⁺ turns back (a squat statue), or no sliding direction whose
+    θ̇⁺ keeps its sign (an r well below Housner's on a low friction: the held outcome is then
+    returned though it needs more than μs, and the run's result ends there, results.response.
+    held_impact_time; docs/theory/derivation.md §6).
     """
     mh = m2 * h
     lhs = r * i_o * theta_dot + mh * u_dot  # I_O θ̇⁺ + m h u̇⁺ equals this

@@ -27,7 +27,8 @@ def apply_transition(p, guard, at_step_start, y, sig, s, a, av):
     the new regime, the event kind, whether the new regime is strictly consistent, whether an
     impact law was applied, the kinetic
     energy lost (J), the friction ratio |Fx|/Fy an impact needs from the floor and at the
-    statue's base, and whether a held pedestal needed more floor friction than μs at the impact.
+    statue's base, and whether the impact left the body on the floor held by more floor friction
+    than μs.
     """
     lost, floor_ratio, top_ratio, floor_short, ok = 0.0, 0.0, 0.0, False, True
     if guard == FALL:
@@ -57,9 +58,12 @@ def apply_transition(p, guard, at_step_start, y, sig, s, a, av):
             )
         else:
             ud1, thd1, fx, fy = impact_paper(p[M], p[M2], p[B], p[H], p[ETA], y[1], y[3])
-        # The floor must supply this ratio; the paper's law does not check it (P15, O19).
+        # The floor must supply this ratio; the paper's law does not check it (P15, O19). The body
+        # ends the impact held with more than μs where the paper's law keeps a held body held, or
+        # where the Coulomb law found no consistent outcome and kept its held one (a slide takes
+        # μk·Fy): a body sliding before the impact can end it so, under the Coulomb law only.
         floor_ratio = friction_ratio(fx, fy)
-        floor_short = p[CAN_SLIDE] > 0.5 and y[1] == 0.0 and ud1 == 0.0 and floor_ratio > p[MU_S]
+        floor_short = p[CAN_SLIDE] > 0.5 and ud1 == 0.0 and floor_ratio > p[MU_S]
         # Impulse on the statue's base: it must not slip on the pedestal either.
         lx = p[M2] * ((ud1 - y[1]) + p[H] * (thd1 - y[3]))
         ly = p[M2] * p[B] * (abs(thd1) + abs(y[3]))

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 from ..models.regimes import Regime
-from ..results.response import LIFTED_OFF
+from ..results.response import IMPACT_BEYOND_FRICTION, LIFTED_OFF
 from ..results.wording import need_text
 
 Rows = list[tuple[str, str]]
@@ -173,6 +173,10 @@ def verdict(response) -> str:
         return (f"{s['verdict'][0].upper()}{s['verdict'][1:]} (the warnings say which body): what follows is not a "
                 f"result; model it as a stack of blocks ([[blocks]]), whose engine follows the flight. Over the "
                 f"whole run, in the two-body model, {body}.")
+    if s["status"] == IMPACT_BEYOND_FRICTION:
+        return (f"{s['verdict'][0].upper()}{s['verdict'][1:]}: the model held the body on the floor anyway, so what "
+                f"follows is not a result; model it as a stack of blocks ([[blocks]]), whose engine solves each "
+                f"impact with friction at both corners. Over the whole run, in the two-body model, {body}.")
     if s["status"] != "completed":
         return (
             f"Undetermined: the simulation stopped early at t = {s['end_time']:.2f} s ({response.status_message}); "
@@ -495,14 +499,22 @@ def _rest_check(s: Mapping[str, Any]) -> Check:
 
 
 def _impact_floor_check(response, s: Mapping[str, Any]) -> Check | None:
-    """Only the paper's impact rule needs a floor friction it does not apply (Coulomb impacts
-    bound the impulse by friction)."""
+    """The paper's impact rule takes whatever floor friction an impact needs. The Coulomb rule
+    bounds the impulse by friction, except at an impact where no outcome within it was consistent
+    and the body was held anyway (``Response.impact_friction_shortfalls``): a failed check, so
+    that a verdict resting on such impacts does not show as safe."""
     floor = response.system.floor_friction
-    if response.options.impact != "paper" or floor is None:
+    if floor is None:
         return None
-    need = s["impact_floor_friction_needed"]
-    return Check("floor friction the impacts need ≤ the floor's μs (paper's impact rule)", f"{need:.3f}",
-                 f"μs = {floor.mu_s:g}", PASS if need <= floor.mu_s else FAIL)
+    if response.options.impact == "paper":
+        need = s["impact_floor_friction_needed"]
+        return Check("floor friction the impacts need ≤ the floor's μs (paper's impact rule)", f"{need:.3f}",
+                     f"μs = {floor.mu_s:g}", PASS if need <= floor.mu_s else FAIL)
+    held = response.impact_friction_shortfalls()
+    if not held.size:
+        return None
+    return Check("every impact within the floor's friction (Coulomb impact rule)",
+                 f"{held.size} held beyond it from t = {held[0]:.2f} s (see the warnings)", f"μs = {floor.mu_s:g}", FAIL)
 
 
 def _energy_check(s: Mapping[str, Any]) -> Check:

@@ -30,9 +30,18 @@ _LIFTED_OFF_MESSAGE = ("a body would leave its support while the statue stood (t
                        "which the two-body model does not follow (it keeps every body on its support): what "
                        "follows is not a result; model it as a stack of blocks ([[blocks]]), whose engine follows "
                        "the flight")
-# the solver's statuses a lift-off while standing overrides: the run went on after the model's
-# result had ended (to rest, to an overturn, or round a loop of events under a floor falling
-# faster than gravity, where the model's statue topples under the reversed weight)
+#: A run in which an impact needed more floor friction than μs and the Coulomb impact law held
+#: the body on the floor anyway (see held_impact_time).
+IMPACT_BEYOND_FRICTION = "impact_beyond_friction"
+_IMPACT_BEYOND_FRICTION_MESSAGE = (
+    "an impact needed more floor friction than μs and no outcome of the impact law within friction was consistent "
+    "(the warning above says when and how much); the two-body model held the body on the floor anyway, so what "
+    "follows is not a result; model it as a stack of blocks ([[blocks]]), whose engine solves each impact with "
+    "friction at both corners")
+# the solver's statuses a lift-off while standing, or an impact held beyond friction, overrides:
+# the run went on after the model's result had ended (to rest, to an overturn, or round a loop of
+# events under a floor falling faster than gravity, where the model's statue topples under the
+# reversed weight)
 _OVERRIDDEN_BY_LIFT_OFF = (C.STATUS_COMPLETED, C.STATUS_STILL_MOVING, C.STATUS_MAX_EVENTS, C.STATUS_OVERTURNED)
 
 
@@ -52,12 +61,35 @@ def lift_off_time(raw: np.ndarray) -> float | None:
     return None if exceeded == exceeded and t >= exceeded else t
 
 
+def held_impact_time(raw: np.ndarray) -> float | None:
+    """The first instant (s) of an impact that needed more floor friction than μs, at which the
+    Coulomb impact law (derivation §3.6) found no consistent outcome within friction and held the
+    body on the floor anyway, or None (never, or under the paper's law, which holds such bodies by
+    design and says so in a warning). The rest of the run follows a floor impulse friction cannot
+    give, so it is not a result: status ``impact_beyond_friction``, an undetermined verdict, never
+    safe, and no overturn either. Seen with a restitution well below Housner's on a low floor
+    friction (:meth:`Response.impact_friction_shortfalls`)."""
+    return _opt(raw[C.S_HELD_IMPACT])
+
+
+def model_end_time(raw: np.ndarray) -> float | None:
+    """The first instant (s) the two-body model's result ends (:func:`lift_off_time`,
+    :func:`held_impact_time`), or None."""
+    times = [t for t in (lift_off_time(raw), held_impact_time(raw)) if t is not None]
+    return min(times) if times else None
+
+
 def status_of(raw: np.ndarray) -> tuple[str, str]:
     """(status, message) of a run from the solver's raw summary: the solver's own, or
-    ``lifted_off`` (see :func:`lift_off_time`)."""
+    ``lifted_off`` (see :func:`lift_off_time`), or ``impact_beyond_friction`` (see
+    :func:`held_impact_time`), whichever came first."""
     code = int(raw[C.S_STATUS])
-    if code in _OVERRIDDEN_BY_LIFT_OFF and lift_off_time(raw) is not None:
-        return LIFTED_OFF, _LIFTED_OFF_MESSAGE
+    if code in _OVERRIDDEN_BY_LIFT_OFF:
+        lift, held = lift_off_time(raw), held_impact_time(raw)
+        if lift is not None and (held is None or lift <= held):
+            return LIFTED_OFF, _LIFTED_OFF_MESSAGE
+        if held is not None:
+            return IMPACT_BEYOND_FRICTION, _IMPACT_BEYOND_FRICTION_MESSAGE
     return _STATUS[code]
 
 
@@ -104,17 +136,21 @@ SUMMARY_FIELDS = (
     "overturned", "overturn_time", "exceeded_alpha_time", "peak_rotation", "peak_rotation_over_alpha",
     "peak_sliding", "residual_sliding", "impacts", "first_rocking_time", "first_sliding_time",
     "required_top_friction", "impact_floor_friction_needed", "top_slip_time", "pedestal_uplift_time",
-    "energy_balance_error", "status", "end_time", "still_moving", "verdict",
+    "impact_beyond_friction_time", "energy_balance_error", "status", "end_time", "still_moving", "verdict",
 )
 
 
-def verdict_text(status: str, overturn_time: float | None, end_time: float, lift_off: float | None = None) -> str:
+def verdict_text(status: str, overturn_time: float | None, end_time: float, model_end: float | None = None) -> str:
     """The one-line verdict: "overturned at t = …", "did not overturn; at rest at t = …", or
-    "undetermined: …" whenever the run could not tell (still moving, the solver stopped, or a body
-    would have left its support at ``lift_off``, s)."""
+    "undetermined: …" whenever the run could not tell (still moving, the solver stopped, or the
+    two-body model's result ended at ``model_end``, s: a body would have left its support, or an
+    impact needed more floor friction than there is)."""
     if status == LIFTED_OFF:
-        return (f"undetermined: a body would leave its support at t = {lift_off:.3f} s, which the two-body model "
+        return (f"undetermined: a body would leave its support at t = {model_end:.3f} s, which the two-body model "
                 "does not follow")
+    if status == IMPACT_BEYOND_FRICTION:
+        return (f"undetermined: an impact at t = {model_end:.3f} s needed more floor friction than μs, which the "
+                "two-body model's impact law cannot give")
     if status == "overturned":
         return f"overturned at t = {overturn_time:.3f} s"
     if status == "completed":
@@ -144,11 +180,12 @@ def summary_values(raw: np.ndarray, alpha: float) -> dict[str, Any]:
         # the first instants the model's assumptions fail (derivation §3.5; the warnings say it in words)
         "top_slip_time": _opt(raw[C.S_TOP_SLIP]),
         "pedestal_uplift_time": _opt(raw[C.S_UPLIFT]),
+        "impact_beyond_friction_time": held_impact_time(raw),
         "energy_balance_error": float(raw[C.S_BALANCE] / raw[C.S_ENERGY_SCALE]),
         "status": status,
         "end_time": end_time,
         "still_moving": status == "still_moving",
-        "verdict": verdict_text(status, _opt(raw[C.S_OVERTURN_TIME]), end_time, lift_off_time(raw)),
+        "verdict": verdict_text(status, _opt(raw[C.S_OVERTURN_TIME]), end_time, model_end_time(raw)),
     }
 
 
@@ -279,11 +316,14 @@ class Response:
         for index, text in checks:
             if not math.isnan(s[index]):
                 out.append(f"from t = {s[index]:.4f} s {text}")
-        if s[C.S_IMPACT_FLOOR_SHORT] > 0:
+        if s[C.S_IMPACT_FLOOR_SHORT] > 0 and self.options.impact == "paper":
             out.append(
                 f"{int(s[C.S_IMPACT_FLOOR_SHORT])} impact(s) needed more floor friction than μs "
                 f"(up to {s[C.S_IMPACT_FLOOR_RATIO]:.3f}); the paper's impact law ignores this"
             )
+        held = self._held_beyond_friction()
+        if len(held):
+            out.append(self._shortfall_text(held))
         lifts = self.impact_uplifts()
         if lifts.size:
             out.append(f"from t = {lifts[0]:.4f} s, at {lifts.size} impact(s), the floor's impulse under the pedestal "
@@ -324,7 +364,7 @@ class Response:
         if self._ended_before_motion():
             return (f"undetermined: the run ended at t = {self.end_time:.3f} s, before the floor motion "
                     f"({float(self.motion.duration):.3f} s)")
-        return verdict_text(self.status, self.overturn_time, self.end_time, lift_off_time(self.raw_summary))
+        return verdict_text(self.status, self.overturn_time, self.end_time, model_end_time(self.raw_summary))
 
     def summary(self) -> dict[str, Any]:
         """The summary contract of ``rocking run`` (SI units, radians, null when it did not happen)."""
@@ -389,6 +429,42 @@ class Response:
             for start, stop in zip(edges[::2], edges[1::2]):
                 out.append((name, float(self.t[start]), float(self.t[stop - 1])))
         return sorted(out, key=lambda v: v[1])
+
+    def impact_friction_shortfalls(self) -> np.ndarray:
+        """Times (s) of the impacts of the Coulomb law (``options.impact = "coulomb"``) that found
+        no outcome within the floor's friction and held the body on the floor anyway.
+
+        The law (derivation §3.6) first holds the body on the floor: the statue's angular momentum
+        about the new corner gives θ̇⁺ and the floor must supply |Fx|/Fy (O19 with u̇ = 0). If that
+        exceeds μs, it lets the body slide with Fx = −μk·Fy·sgn(u̇⁺); that outcome is consistent
+        only if the statue still rolls onto the new corner (θ̇⁺ of the sign of θ̇⁻). With a
+        restitution well below Housner's (a lone block of r = 0.62 on μs = 0.24: Housner's
+        r = 0.95 needs 0.15 of the floor, r = 0.62 needs 1.26) the sliding outcome turns the
+        statue back, no outcome is consistent, and the law keeps the held one, whose floor impulse
+        friction cannot give. What follows is not a motion the floor's friction allows. Empty
+        under the paper's law (its warning counts those impacts) or without floor friction."""
+        return self._held_beyond_friction()[:, 0]
+
+    def _held_beyond_friction(self) -> np.ndarray:
+        """The event rows of :meth:`impact_friction_shortfalls`. The law's held outcome ends with
+        u̇⁺ = 0, and only its fallback needs more than μs (a slide takes μk·Fy), whatever the body
+        did before the impact."""
+        floor = self.system.floor_friction
+        if floor is None or self.options.impact == "paper":
+            return np.empty((0, self.event_table.shape[1]))
+        rows = self.event_table[np.isin(self.event_table[:, 1], (EV_IMPACT, EV_SETTLE))]
+        return rows[(rows[:, 5] == 0.0) & (rows[:, 9] > floor.mu_s)]
+
+    def _shortfall_text(self, rows: np.ndarray) -> str:
+        body = "pedestal" if self.system.pedestal is not None else "block"
+        mu_s = self.system.floor_friction.mu_s
+        st = self.system.statue
+        r, r_housner = self.parameters[P.ETA], 1.0 - 1.5 * st.b ** 2 / (st.b ** 2 + st.h ** 2)
+        why = (f"; a restitution below Housner's ({r:.3f} against {r_housner:.3f}) takes that impulse"
+               if r < r_housner - 1e-12 else "")
+        return (f"from t = {rows[0, 0]:.4f} s, {len(rows)} impact(s) needed more floor friction than μs = {mu_s:g} "
+                f"(up to {rows[:, 9].max():.3f}) and no sliding outcome of the impact was consistent: the "
+                f"{body} was held as if the floor could give it{why}")
 
     def impact_uplifts(self) -> np.ndarray:
         """Times (s) of the impacts after which a corner of the pedestal would lift for an instant:

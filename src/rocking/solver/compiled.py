@@ -63,7 +63,7 @@ from ..models.modes import (
     select_regime,
     track_threshold_guards,
 )
-from ..models.parameters import ALPHA, B, CAN_SLIDE, G, H, M, M2, MU_S, MU_TOP
+from ..models.parameters import ALPHA, B, CAN_SLIDE, G, H, IMPACT_COULOMB, M, M2, MU_S, MU_TOP
 
 # Runs the Python-level signal handlers (C API; needs the GIL, which compiled code holds). In a
 # thread other than the main one it does nothing. See rocking.solver.signals for why the
@@ -74,8 +74,8 @@ _check_signals = types.ExternalFunction("PyErr_CheckSignals", types.int32())
 (S_STATUS, S_OVERTURN_TIME, S_EXCEED_TIME, S_PEAK_ROTATION, S_PEAK_SLIDING, S_RESIDUAL_SLIDING, S_IMPACTS,
  S_FIRST_ROCK, S_FIRST_SLIDE, S_TOP_RATIO, S_BALANCE, S_STEPS, S_EVENTS, S_T_END, S_N_NONPOSITIVE,
  S_PY_NONPOSITIVE, S_TOP_SLIP, S_UPLIFT, S_IMPACT_FLOOR_RATIO, S_IMPACT_FLOOR_SHORT, S_INDETERMINATE,
- S_D_IMPACT, S_D_FRICTION, S_W_INPUT, S_ENERGY_SCALE, S_REJECTED) = range(26)
-N_SUMMARY = 26
+ S_D_IMPACT, S_D_FRICTION, S_W_INPUT, S_ENERGY_SCALE, S_REJECTED, S_HELD_IMPACT) = range(27)
+N_SUMMARY = 27
 
 (STATUS_COMPLETED, STATUS_OVERTURNED, STATUS_MAX_EVENTS, STATUS_SINGULAR, STATUS_STEP_FAILED, STATUS_STILL_MOVING,
  STATUS_INTERRUPTED) = range(7)
@@ -1167,6 +1167,10 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
                 impacts += 1
                 impact_floor_ratio = max(impact_floor_ratio, ratio)
                 impact_short += 1 if short else 0
+                if short and p[IMPACT_COULOMB] > 0.5 and math.isnan(summ[S_HELD_IMPACT]):
+                    # the Coulomb law found no outcome within friction and held the body anyway:
+                    # the two-body model's result ends here (results.response.status_of)
+                    summ[S_HELD_IMPACT] = t
                 top_ratio = max(top_ratio, top)
                 if p[MU_TOP] >= 0.0 and top > p[MU_TOP] and math.isnan(summ[S_TOP_SLIP]):
                     summ[S_TOP_SLIP] = t
