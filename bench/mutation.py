@@ -69,7 +69,7 @@ MODULES: dict[str, list[str]] = {
         "test_sliding_and_slide_rock.py", "test_fast_paths.py", "test_integrator_crosscheck.py",
     ],
     "models/transitions.py": [
-        "test_mutants.py", "test_independent_solver.py", "test_single_block_rocking.py", "test_sliding_and_slide_rock.py",
+        "test_mutants.py", "test_impact_beyond_friction.py", "test_independent_solver.py", "test_single_block_rocking.py", "test_sliding_and_slide_rock.py",
         "test_statue_on_pedestal.py", "test_run_until_rest.py",
     ],
     "models/parameters.py": [
@@ -84,7 +84,7 @@ MODULES: dict[str, list[str]] = {
     ],
     "excitation/record.py": ["test_mutants.py", "test_records.py", "test_config.py", "test_single_block_rocking.py"],
     "solver/compiled.py": [
-        "test_compiled_root_finders.py", "test_mutants.py", "test_fast_paths.py", "test_single_block_rocking.py", "test_sliding_and_slide_rock.py",
+        "test_compiled_root_finders.py", "test_mutants.py", "test_impact_beyond_friction.py", "test_fast_paths.py", "test_single_block_rocking.py", "test_sliding_and_slide_rock.py",
         "test_statue_on_pedestal.py", "test_integrator_crosscheck.py", "test_crosscheck_mutants.py",
         "test_run_until_rest.py", "test_interrupts.py",
         # the stack engine's half of this file cannot see a mutant of the two-body solver
