@@ -903,6 +903,31 @@ def test_the_sink_check_sees_the_corners_of_drums_of_equal_width():
         assert deepest_sink(column(0.4), tilted) == pytest.approx(dip, rel=1e-12)
 
 
+@pytest.mark.parametrize("theta", [0.4, -0.4, 1.2, -1.2, 0.5 * math.pi - 1e-8])
+def test_the_sink_check_sees_a_block_tilted_far_on_the_one_below(theta):
+    """A 0.4 × 1 m block rocking on a 2 m wide plinth, tilted by θ relative to it (up to a hair
+    short of its overturn, π/2 − 1e-8), with its low corner put 1 mm below the plinth's top face
+    at x = 0.1 m: the check counts 1 mm (to 1e-12 m). Only a block turned to π/2 on the one below
+    (to 1e-9 rad: its overturn, where it may lie along that block's side) is skipped. Kills
+    bench/MUTATION.md's 58d4caef and 5c8cb107 (thirty-fourth round), which skipped every tilt
+    beyond 0.16 and 0.57 rad."""
+    from rocking.stack.simulate import deepest_sink
+
+    stack = Stack(blocks=(Block(width=2.0, height=0.5, mass=500.0), Block(width=0.4, height=1.0, mass=100.0)),
+                  interfaces=(Interface(), Interface()))
+    b, h = 0.2, 0.5
+    side = math.copysign(1.0, theta)  # the corner (side·b, −h) dips, Θ clockwise
+    x = 0.1 - side * b * math.cos(theta) + h * math.sin(theta)
+    y = 0.5 - 1e-3 + side * b * math.sin(theta) + h * math.cos(theta)
+    pose = np.array([[[0.0, 0.25, 0.0], [x, y, theta]]])
+    assert deepest_sink(stack, pose) == pytest.approx(1e-3, abs=1e-12)
+    overturned = pose.copy()
+    overturned[0, 1, 2] = side * 0.5 * math.pi
+    overturned[0, 1, 0] = 0.1 - side * b * 0.0 + h * side  # the same corner, 1 mm down, at the overturn
+    overturned[0, 1, 1] = 0.5 - 1e-3 + b
+    assert deepest_sink(stack, overturned) == 0.0
+
+
 def test_a_run_whose_blocks_overlap_gives_no_verdict(monkeypatch):
     """Should the engine lose a contact again (a corner going on through the face below, as before
     the fix of 2026-11-24), the run is not believed: status "lost_contact", an undetermined
