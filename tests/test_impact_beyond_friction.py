@@ -87,6 +87,9 @@ def test_an_impact_that_friction_cannot_hold_ends_the_two_body_result():
     assert r.verdict == (f"undetermined: an impact at t = {first.time:.3f} s needed more floor friction than μs, "
                          "which the two-body model's impact law cannot give")
     held = [i for i in r.impacts if i.u_dot_after == 0.0 and i.friction_needed > LOW.mu_s]
+    # the block never slides: every impact of the run is one of them, each needing the closed form
+    assert len(held) == len(r.impacts) > 10 and r.summary()["peak_sliding"] == 0.0
+    np.testing.assert_allclose([i.friction_needed for i in held], 1.25, rtol=1e-12)
     np.testing.assert_array_equal(r.impact_friction_shortfalls(), [i.time for i in held])
     assert [w for w in r.warnings if "no sliding outcome" in w] == [
         f"from t = {first.time:.4f} s, {len(held)} impact(s) needed more floor friction than μs = 0.25 (up to "
