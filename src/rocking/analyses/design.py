@@ -1344,7 +1344,7 @@ def design_report(ds, *, title: str = "Friction design", chart: str | None = "de
         sel = ds.sel(mu_s=shown[0], pedestal_mass=shown[1])
         factors = [float(f) for f in ds.friction_factor.values]
         lines += [f"## Free space per motion, for {shown[2]} (μs = {shown[0]:.3g}, pedestal mass {shown[1]:g} kg)", "",
-                  f"The largest peak sliding of the pedestal under each motion, "
+                  "The largest peak sliding of the pedestal under each motion, "
                   + (f"over the friction levels {_levels_text(factors, [True] * len(factors))}" if len(factors) > 1
                      else "at the nominal friction")
                   + f". Overall: **{_mm(float(sel.clearance.max()))}**.",

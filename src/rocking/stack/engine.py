@@ -1006,7 +1006,6 @@ def _energy_of(P, ends, anchor, y, gravity):
 @njit(cache=True)
 def _kinetic_of(P, ends, anchor, z, zd):
     n = P.shape[0]
-    nz = 3 * n
     A, beta, C, X, Xd, th, thd = new_frame(n)
     forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, th, thd)
     return kinetic_energy(P, Xd, thd)

@@ -33,7 +33,6 @@ from .kinematics import (
     P_BL,
     P_BU,
     P_CAN_SLIP,
-    P_HL,
     P_HU,
     P_MU_K,
     P_MU_S,

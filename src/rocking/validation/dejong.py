@@ -38,7 +38,7 @@ def similarity_rows(quick: bool) -> list[Row]:
                           f"one-sine pulse A = {A:g}, β = {beta:g}: largest difference between sizes", "exact",
             published=0.0, ours=d_time, tol=1e-7,
             note="published: identical response in τ = p·t (tolerance: the solver's, in dimensionless time)"),
-        Row("DD1.2", SRC, f"similarity: peak θ/α of the same runs, largest difference between sizes", "exact",
+        Row("DD1.2", SRC, "similarity: peak θ/α of the same runs, largest difference between sizes", "exact",
             published=0.0, ours=d_peak, tol=1e-8),
     ]
     if not quick:
@@ -51,7 +51,7 @@ def similarity_rows(quick: bool) -> list[Row]:
                                                 workers=1))
         a, b = (s.amplitude_ratio.values for s in spectra)
         rows.append(Row("DD1.3", SRC, "similarity: minimum overturning a_p/(g·tan α) of one-sine and one-cosine "
-                                      f"pulses at β = 2, 4 for k = 1 and 10: largest relative difference",
+                                      "pulses at β = 2, 4 for k = 1 and 10: largest relative difference",
                         "exact", published=0.0, ours=float(np.max(np.abs(a / b - 1.0))), tol=2e-6,
                         note="tolerance: two bisection steps (rtol 1e-6)"))
     return rows
