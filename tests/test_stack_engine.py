@@ -923,7 +923,7 @@ def test_the_sink_check_sees_a_block_tilted_far_on_the_one_below(theta):
     assert deepest_sink(stack, pose) == pytest.approx(1e-3, abs=1e-12)
     overturned = pose.copy()
     overturned[0, 1, 2] = side * 0.5 * math.pi
-    overturned[0, 1, 0] = 0.1 - side * b * 0.0 + h * side  # the same corner, 1 mm down, at the overturn
+    overturned[0, 1, 0] = 0.1 + side * h  # the same corner, 1 mm down, at the overturn
     overturned[0, 1, 1] = 0.5 - 1e-3 + b
     assert deepest_sink(stack, overturned) == 0.0
 

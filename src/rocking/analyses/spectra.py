@@ -144,10 +144,11 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
     # a body that would leave its support while the statue stands ends what the two-body model
     # can tell (results.response.lift_off_time), an overturn after it too: as a pedestal that
     # would tip (below), a fall risk this model does not follow, failing under every criterion
-    if status_of(raw)[0] == LIFTED_OFF:
+    model_status = status_of(raw)[0]
+    if model_status == LIFTED_OFF:
         counter[4 if not math.isnan(raw[C.S_UPLIFT]) else 5] += 1
         return True
-    if status_of(raw)[0] == IMPACT_BEYOND_FRICTION:
+    if model_status == IMPACT_BEYOND_FRICTION:
         # an impact held the block by more floor friction than there is (results.response.
         # held_impact_time): what follows is not a result, so, as a lift-off, not shown to stand
         counter[6] += 1

@@ -63,7 +63,7 @@ def lift_off_time(raw: np.ndarray) -> float | None:
 
 def held_impact_time(raw: np.ndarray) -> float | None:
     """The first instant (s) of an impact that needed more floor friction than μs, at which the
-    Coulomb impact law (derivation §3.6) found no consistent outcome within friction and held the
+    Coulomb impact law (docs/theory/derivation.md §6) found no consistent outcome within friction and held the
     body on the floor anyway, or None (never, or under the paper's law, which holds such bodies by
     design and says so in a warning). The rest of the run follows a floor impulse friction cannot
     give, so it is not a result: status ``impact_beyond_friction``, an undetermined verdict, never
@@ -321,9 +321,8 @@ class Response:
                 f"{int(s[C.S_IMPACT_FLOOR_SHORT])} impact(s) needed more floor friction than μs "
                 f"(up to {s[C.S_IMPACT_FLOOR_RATIO]:.3f}); the paper's impact law ignores this"
             )
-        held = self._held_beyond_friction()
-        if len(held):
-            out.append(self._shortfall_text(held))
+        elif s[C.S_IMPACT_FLOOR_SHORT] > 0:
+            out.append(self._shortfall_text())
         lifts = self.impact_uplifts()
         if lifts.size:
             out.append(f"from t = {lifts[0]:.4f} s, at {lifts.size} impact(s), the floor's impulse under the pedestal "
@@ -434,12 +433,12 @@ class Response:
         """Times (s) of the impacts of the Coulomb law (``options.impact = "coulomb"``) that found
         no outcome within the floor's friction and held the body on the floor anyway.
 
-        The law (derivation §3.6) first holds the body on the floor: the statue's angular momentum
+        The law (docs/theory/derivation.md §6) first holds the body on the floor: the statue's angular momentum
         about the new corner gives θ̇⁺ and the floor must supply |Fx|/Fy (O19 with u̇ = 0). If that
         exceeds μs, it lets the body slide with Fx = −μk·Fy·sgn(u̇⁺); that outcome is consistent
         only if the statue still rolls onto the new corner (θ̇⁺ of the sign of θ̇⁻). With a
-        restitution well below Housner's (a lone block of r = 0.62 on μs = 0.24: Housner's
-        r = 0.95 needs 0.15 of the floor, r = 0.62 needs 1.26) the sliding outcome turns the
+        restitution well below Housner's (a lone 0.3 × 1.5 m block on μs = 0.25: Housner's
+        r = 0.942 needs 0.149 of the floor, r = 0.6 needs 1.25) the sliding outcome turns the
         statue back, no outcome is consistent, and the law keeps the held one, whose floor impulse
         friction cannot give. What follows is not a motion the floor's friction allows. Empty
         under the paper's law (its warning counts those impacts) or without floor friction."""
@@ -455,16 +454,20 @@ class Response:
         rows = self.event_table[np.isin(self.event_table[:, 1], (EV_IMPACT, EV_SETTLE))]
         return rows[(rows[:, 5] == 0.0) & (rows[:, 9] > floor.mu_s)]
 
-    def _shortfall_text(self, rows: np.ndarray) -> str:
+    def _shortfall_text(self) -> str:
+        """The warning of the Coulomb law's impacts held beyond friction, from the solver's count
+        and first instant of them. Its largest floor ratio is theirs: every other impact of the
+        law needs at most μs (held) or takes μk (a slide)."""
+        s = self.raw_summary
         body = "pedestal" if self.system.pedestal is not None else "block"
-        mu_s = self.system.floor_friction.mu_s
         st = self.system.statue
-        r, r_housner = self.parameters[P.ETA], 1.0 - 1.5 * st.b ** 2 / (st.b ** 2 + st.h ** 2)
-        why = (f"; a restitution below Housner's ({r:.3f} against {r_housner:.3f}) takes that impulse"
-               if r < r_housner - 1e-12 else "")
-        return (f"from t = {rows[0, 0]:.4f} s, {len(rows)} impact(s) needed more floor friction than μs = {mu_s:g} "
-                f"(up to {rows[:, 9].max():.3f}) and no sliding outcome of the impact was consistent: the "
-                f"{body} was held as if the floor could give it{why}")
+        r = st.effective_restitution
+        why = (f"; a restitution below Housner's ({r:.3f} against {st.housner_restitution:.3f}) takes that impulse"
+               if r < st.housner_restitution else "")
+        return (f"from t = {s[C.S_HELD_IMPACT]:.4f} s, {int(s[C.S_IMPACT_FLOOR_SHORT])} impact(s) needed more floor "
+                f"friction than μs = {self.system.floor_friction.mu_s:g} (up to {s[C.S_IMPACT_FLOOR_RATIO]:.3f}) and "
+                f"no sliding outcome of the impact was consistent: the {body} was held as if the floor could give "
+                f"it{why}")
 
     def impact_uplifts(self) -> np.ndarray:
         """Times (s) of the impacts after which a corner of the pedestal would lift for an instant:
