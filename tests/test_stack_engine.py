@@ -224,6 +224,51 @@ def test_onset_stack_slides_on_floor():
     assert r.blocks[1]["first_sliding_time"] is None
 
 
+def _two_drums(restitution):
+    """Two 0.4 × 1.0 m, 100 kg drums that never slip, the lower one's restitution given: while the
+    joint between them stays closed they are one uniform 0.4 × 2.0 m, 200 kg block."""
+    drum = Block(width=0.4, height=1.0, mass=100.0)
+    return Stack(blocks=(drum, drum), interfaces=(Interface(restitution=restitution), Interface()))
+
+
+def test_a_column_of_drums_lands_with_the_restitution_the_stack_says():
+    """A known limit (docs/theory/stack.md §9): the restitution couple counts block k alone, so a
+    column of two drums rocking as one on the floor with r = 0.7 given at its base lands at
+    r_H + (0.7 − r_H,drum)·I_drum/I_column = 0.9293 (r_H = 0.9423 the column's Housner value,
+    0.7931 the drum's). ``Stack.landing_restitution`` says so, and the report warns of it. The
+    column is then today's single 0.4 × 2 m block with that r: the angles agree to 1e-8 rad and
+    the first ten impacts to 1e-9 s; with the r given (0.7) the block rocks to half the column's
+    peak. With nothing on it a block lands with its own r."""
+    stack = _two_drums(0.7)
+    r_left, r_right = stack.landing_restitution(1)
+    alpha_column, alpha_drum = math.atan2(0.2, 1.0), math.atan2(0.2, 0.5)
+    r_h, r_drum = 1 - 1.5 * math.sin(alpha_column) ** 2, 1 - 1.5 * math.sin(alpha_drum) ** 2
+    i_ratio = (0.2 ** 2 + 0.5 ** 2) / (2 * (0.2 ** 2 + 1.0 ** 2))  # I_O ∝ m (b² + h²), half-sizes
+    assert r_left == r_right == pytest.approx(r_h + (0.7 - r_drum) * i_ratio, rel=1e-14)
+    assert r_left == pytest.approx(0.92933, abs=1e-5)
+    assert _two_drums(None).landing_restitution(1) is None
+    assert _two_drums(0.7).landing_restitution(2) is None
+    alone = Stack(blocks=(Block(width=0.4, height=1.0, mass=100.0, offset=0.05),), interfaces=(Interface(restitution=0.7),))
+    assert alone.landing_restitution(1) == (0.7, 0.7)
+    motion = rocking.SinePulse(amplitude=3.0, frequency=1.5)
+    column = simulate_stack(stack, motion, options={"save_dt": 0.01})
+    column_block = rocking.Statue(width=0.4, height=2.0, mass=200.0, restitution=r_left)
+    block = rocking.simulate(rocking.System(statue=column_block), motion, options={"save_dt": 0.01})
+    assert column.status == block.status == "completed"
+    assert not np.any(column.events[:, 1] == 1)  # the joint never opens
+    on, i, j = np.intersect1d(np.round(column.t, 9), np.round(block.t, 9), return_indices=True)
+    assert len(on) > 300
+    assert np.max(np.abs(column.rotation[i, 0] - block.theta[j])) < 1e-8
+    hits = column.events[column.events[:, 2] == -1, 0][:10]
+    assert len(hits) == 10
+    np.testing.assert_allclose(hits, [e.time for e in block.impacts[:10]], rtol=0, atol=1e-9)
+    as_given = rocking.simulate(rocking.System(statue=dataclasses.replace(column_block, restitution=0.7)), motion)
+    assert as_given.summary()["peak_rotation"] < 0.6 * column.blocks[0]["peak_rotation"]
+    warnings = build_stack_content(column).warnings
+    assert any(w.startswith("The restitution 0.70 under block 1 counts block 1 alone") and "r = 0.93" in w
+               for w in warnings), warnings
+
+
 def test_energy_balance_and_dissipation():
     """E(t) − E(0) = W_in − D_friction − D_impact to the solver's accuracy, and no impact adds energy."""
     fr = Friction(static=0.3, kinetic=0.25)
