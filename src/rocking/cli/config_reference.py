@@ -77,7 +77,10 @@ MEANING: dict[str, tuple[str, str]] = {
     "InterfaceConfig.friction": ("–", "Coulomb friction between the block and what it stands on; omitted: it "
                                       "never slips"),
     "InterfaceConfig.restitution": ("–", "r: relative angular velocity after/before an impact on the block's other "
-                                         "corner; omitted: a plastic impact, which gives Housner's value"),
+                                         "corner; omitted: a plastic impact, which gives Housner's value. Under a "
+                                         "block that carries others it counts that block alone: the block and what "
+                                         "it carries land at another r, which the report states "
+                                         "(docs/theory/stack.md §9)"),
     # friction tables
     "FrictionConfig.static": ("–", "μs, static Coulomb friction"),
     "FrictionConfig.kinetic": ("–", "μk ≤ μs, kinetic Coulomb friction; omitted: μk = μs"),
