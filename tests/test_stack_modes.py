@@ -344,3 +344,31 @@ def test_the_rest_rule_lands_the_floor_interface_whatever_the_others_pull():
                        1e-9, 1e-12, x, lam, 0)
     assert code == SELECT_OK and list(nstate) == [FLAT, FLAT]
     np.testing.assert_allclose(x, sol[0], rtol=0, atol=1e-9)
+
+
+def test_the_other_end_must_open_strictly_from_rest_and_within_the_tolerance_after_an_impulse():
+    """``_candidate_ok``'s opening check for a flat interface that would rock: the other end's
+    gap acceleration must be > 0, strictly, at the acceleration level (flat, tried first, holds
+    where it is zero; a tolerance there once let a block rock the wrong way round), and its gap
+    rate ≥ −tol_rate after an impulse. Checked on both levels at openings of −2, −½, 0 and +½
+    tol_rate, with the anchor pushing and nothing slipping, so only that check decides. (Swapping
+    the two levels' checks, mutant 83a4595a, was reached by no run.)"""
+    from rocking.stack.kinematics import end_gap_gradient
+    from rocking.stack.modes import _candidate_ok
+
+    stack = Stack(blocks=(Block(width=0.4, height=1.2, mass=100.0),), interfaces=(Interface(),))
+    P, ends, anchor, z = pack(stack)
+    tol_force, tol_rate = 1e-10 * P[0, P_MASS] * G, 1e-9
+    grad = end_gap_gradient(P, ends, anchor, 0, z, 1 - anchor[0])
+    assert grad[1] != 0.0
+    lam = np.array([0.0, 0.0, P[0, P_MASS] * G])  # the anchor carries the weight
+    geo = np.array([FLAT])
+    outcomes = {}
+    for level in (ACCELERATION, VELOCITY):
+        for opening in (-2.0, -0.5, 0.0, 0.5):
+            x = np.array([0.0, opening * tol_rate / grad[1], 0.0])
+            assert grad[1] * x[1] == pytest.approx(opening * tol_rate, rel=1e-12, abs=0.0)
+            outcomes[level, opening] = _candidate_ok(level, P, ends, anchor, geo, 0, ROCK, 0, z, np.zeros(3), x, lam,
+                                                     tol_force, tol_rate, True)
+    assert [outcomes[ACCELERATION, o] for o in (-2.0, -0.5, 0.0, 0.5)] == [False, False, False, True]
+    assert [outcomes[VELOCITY, o] for o in (-2.0, -0.5, 0.0, 0.5)] == [False, True, True, True]
