@@ -298,35 +298,3 @@ def test_an_unbounded_need_is_worded_as_such_not_as_a_coefficient():
 
     assert [row["required_friction"] for row in interface_rows(s, [0.9524417806293648, None])] == [
         f"{s['interfaces'][0]['required_friction']:.3f}", "unbounded"]
-
-
-def test_the_report_warns_of_a_restitution_that_counts_a_block_that_carries_others_alone():
-    """The known limit of docs/theory/stack.md §9 is said where it bites and nowhere else: a
-    statue's restitution on its pedestal (nothing on the statue) lands as given, with no warning;
-    a restitution under a pedestal that carries an offset statue lands at another ratio on each
-    corner (0.834 and 0.855 for 0.6: ``Stack.landing_restitution`` against the same sums written
-    out here for this stack), and the warning gives both."""
-    from rocking.report.stack import _restitution_warnings
-    from rocking.stack import Block, Interface, Stack
-
-    statue = Block(width=0.3, height=1.2, mass=100.0, offset=0.1)
-    on_top = Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0), statue),
-                   interfaces=(Interface(), Interface(restitution=0.8)))
-    assert on_top.landing_restitution(2) == pytest.approx((0.8, 0.8), rel=1e-15)
-    assert on_top.landing_restitution(1) is None and _restitution_warnings(on_top) == []
-    under = Stack(blocks=(Block(width=0.5, height=1.0, mass=300.0), statue),
-                  interfaces=(Interface(restitution=0.6), Interface()))
-    left, right = under.landing_restitution(1)
-
-    def lands(o, o_lifting):  # by hand: the pedestal's centre at (0, 0.5), the statue's at (0.1, 1.6)
-        parts = [(300.0, 300.0 * (0.5 ** 2 + 1.0 ** 2) / 12, 0.0, 0.5), (100.0, 100.0 * (0.3 ** 2 + 1.2 ** 2) / 12, 0.1, 1.6)]
-        i = [j + m * ((x - o) ** 2 + y ** 2) for m, j, x, y in parts]
-        h = [j + m * ((x - o) * (x - o_lifting) + y ** 2) for m, j, x, y in parts]
-        return sum(h) / sum(i) + (0.6 - h[0] / i[0]) * i[0] / sum(i)
-
-    assert left == pytest.approx(lands(-0.25, 0.25), rel=1e-14) and right == pytest.approx(lands(0.25, -0.25), rel=1e-14)
-    assert left == pytest.approx(0.83374, abs=1e-5) and right == pytest.approx(0.85480, abs=1e-5)
-    assert _restitution_warnings(under) == [
-        "The restitution 0.60 under block 1 counts block 1 alone: with the blocks standing on it landing as one "
-        "body, it lands with r = 0.83 to 0.85 (by the corner it lands on), not 0.60 (a known limit of the stack "
-        "engine, docs/theory/stack.md §9)."]

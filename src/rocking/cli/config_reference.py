@@ -78,9 +78,8 @@ MEANING: dict[str, tuple[str, str]] = {
                                       "never slips"),
     "InterfaceConfig.restitution": ("–", "r: relative angular velocity after/before an impact on the block's other "
                                          "corner; omitted: a plastic impact, which gives Housner's value. Under a "
-                                         "block that carries others it counts that block alone: the block and what "
-                                         "it carries land at another r, which the report states "
-                                         "(docs/theory/stack.md §9)"),
+                                         "block that carries others flat and stuck it is the r of the body they "
+                                         "make (docs/theory/stack.md §6)"),
     # friction tables
     "FrictionConfig.static": ("–", "μs, static Coulomb friction"),
     "FrictionConfig.kinetic": ("–", "μk ≤ μs, kinetic Coulomb friction; omitted: μk = μs"),

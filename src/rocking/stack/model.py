@@ -83,8 +83,8 @@ class Interface:
     restitution : float, optional
         r in [0, 1]: the ratio of the relative angular velocities after and before an impact of
         the block on its other corner, when what lies below is held (the single block's
-        θ̇⁺ = r θ̇⁻). It counts this block alone: with blocks standing on it, the body they make
-        lands at another ratio (:meth:`Stack.landing_restitution`, a known limit). ``None``: a
+        θ̇⁺ = r θ̇⁻). With blocks standing on it flat and stuck, it is the ratio of the body they
+        make with it (docs/theory/stack.md §6). ``None``: a
         plastic impact on the new corner with the old one free to lift, which gives Housner's
         value for whatever rocks (the block and anything stuck on it).
     """
@@ -146,43 +146,6 @@ class Stack:
             return lo_u, hi_u
         lower = self.blocks[k - 2]
         return max(lo_u, -0.5 * lower.width), min(hi_u, 0.5 * lower.width)
-
-    def landing_restitution(self, k: int) -> tuple[float, float] | None:
-        """How interface k's restitution acts on block k and the blocks standing on it, when they
-        land together as one body (at rest pose, the block below held): φ̇⁺/φ̇⁻ on the left end
-        and on the right end of the interface. ``None`` without a restitution.
-
-        The engine's restitution couple is (r − r_H,k)·I_O,k·φ̇⁻ with r_H,k and I_O,k of block k
-        alone (docs/theory/stack.md §6), so the body lands at r_H + (r − r_H,k)·I_O,k/I_O, with
-        r_H and I_O its own: r itself only for a block that carries nothing (a known limit,
-        §9). Each I_O = Σ J_j + m_j |c_j − O|² and r_H = Σ (J_j + m_j (c_j − O)·(c_j − O′)) / I_O
-        about the end O it lands on, O′ the end that lifts."""
-        r = self.interfaces[k - 1].restitution
-        if r is None:
-            return None
-        lo, hi = self.overlap(k)
-        # centres of blocks k … N in the frame of interface k (x along the face below, y up)
-        centres, x, y = [], 0.0, 0.0
-        for j in range(k - 1, self.n):
-            b = self.blocks[j]
-            x += b.offset
-            centres.append((b, x, y + 0.5 * b.height))
-            y += b.height
-
-        def body(parts, o, o_other):
-            i_o = num = 0.0
-            for b, cx, cy in parts:
-                j_g, m = b.centroidal_inertia, b.mass
-                i_o += j_g + m * ((cx - o) ** 2 + cy ** 2)
-                num += j_g + m * ((cx - o) * (cx - o_other) + cy ** 2)
-            return num / i_o, i_o
-
-        out = []
-        for o, o_other in ((lo, hi), (hi, lo)):
-            r_k, i_k = body(centres[:1], o, o_other)
-            r_all, i_all = body(centres, o, o_other)
-            out.append(r_all + (r - r_k) * i_k / i_all)
-        return out[0], out[1]
 
     @property
     def names(self) -> tuple[str, ...]:
