@@ -372,3 +372,26 @@ def test_the_other_end_must_open_strictly_from_rest_and_within_the_tolerance_aft
                                                      tol_force, tol_rate, True)
     assert [outcomes[ACCELERATION, o] for o in (-2.0, -0.5, 0.0, 0.5)] == [False, False, False, True]
     assert [outcomes[VELOCITY, o] for o in (-2.0, -0.5, 0.0, 0.5)] == [False, True, True, True]
+
+
+def test_an_end_that_slides_past_the_lower_blocks_edge_becomes_that_blocks_corner():
+    """``refresh_ends`` on a block 2.0 m wide (its corners at x = ±1.0 in its own frame, the same
+    numbers as the end types END_L = 1 and END_U = 0) sliding on one 2.5 m wide: while its right
+    corner is inside the lower face that corner makes the right end; slid 0.1 m past the lower
+    block's edge, the right end is the lower block's corner at +1.25, the left end stays its own
+    corner; slid back, its own corner again. (Comparing a type with a stored x, mutant 42e9c46f,
+    or an x with a stored type, b9772f54, took 1.0 for 1 and kept the old corner here.)"""
+    from rocking.stack.kinematics import END_L
+    from rocking.stack.modes import refresh_ends
+
+    stack = Stack(blocks=(Block(width=2.5, height=0.5, mass=300.0), Block(width=2.0, height=0.4, mass=50.0, offset=0.2)),
+                  interfaces=(Interface(), Interface(friction=Friction(static=0.3, kinetic=0.2))))
+    P, ends, anchor, z = pack(stack)
+    assert anchor[1] == 0 and list(ends[1, 0]) == [END_U, -1.0] and list(ends[1, 1]) == [END_U, 1.0]
+    z, zd = z.copy(), np.zeros(6)
+    z[3] += 0.1  # the right corner at 1.3, past the edge at 1.25
+    refresh_ends(P, ends, anchor, 1, z, zd, 1)
+    assert list(ends[1, 1]) == [END_L, 1.25] and list(ends[1, 0]) == [END_U, -1.0]
+    z[3] -= 0.2  # and back, the right corner at 1.1: its own corner again
+    refresh_ends(P, ends, anchor, 1, z, zd, -1)
+    assert list(ends[1, 1]) == [END_U, 1.0] and list(ends[1, 0]) == [END_U, -1.0]
