@@ -1009,6 +1009,53 @@ def test_a_grazing_guard_is_searched_for_its_minimum():
             assert g <= 0.0
 
 
+def test_a_graze_is_located_where_its_dip_first_reaches_zero():
+    """``_graze``: the gap 0.009 − 0.04 x + 0.04 x² of a block in flight dips below zero and first
+    reaches it at x* = (0.04 − √(0.04² − 4·0.04·0.009)) / 0.08 ≈ 0.342; with 0.011 its minimum
+    0.001 stays above zero and the answer is 2 (no event). x is returned at or just past x*,
+    within the 1e-13 s the search stops at."""
+    P, ends, anchor, nstate, tstate, ws = _block_in_flight()
+    F = np.zeros((dop853.INTERPOLATOR_POWER, 8))
+    F[1, 2] = -0.04
+    held = np.zeros(1, dtype=np.bool_)
+    ym, gm = np.zeros(8), np.zeros(E.N_GUARD_SLOTS)
+    root = (0.04 - math.sqrt(0.04 ** 2 - 4 * 0.04 * 0.009)) / 0.08
+    for hs in (1e-3, 0.05):
+        for y2, want in ((0.011, None), (0.009, root)):
+            y = np.zeros(8)
+            y[2] = y2
+            x = E._graze(P, ends, anchor, nstate, tstate, 1.0, y, hs, F, _floor(0.0, -12.0), G, E.G_ANCHOR, 0.0, 1.0,
+                         y2, ym, gm, held, ws)
+            if want is None:
+                assert x == 2.0
+            else:
+                assert 0.0 <= (x - want) * hs <= 2e-13, (hs, x - want)
+
+
+def test_a_gaps_rate_is_the_rate_of_its_corners_distance_from_the_face():
+    """``_gap_rate`` (the dip rule's test, docs/theory/stack.md §7): the anchor's gap d has rate ḋ;
+    the other end's gap has the rate of the oracle's corner distance, differentiated by complex
+    step, at random poses and velocities of every coordinate (exact to rounding: 1e-12 m/s on
+    rates of order 1 m/s)."""
+    rng = np.random.default_rng(20261207)
+    checked = 0
+    while checked < 40:
+        state = random_state(rng, ACCELERATION)
+        if state is None:
+            continue
+        P, ends, anchor, geo, z, _, _ = state
+        n = P.shape[0]
+        zd = rng.uniform(-1.0, 1.0, 3 * n)
+        y = _y(z, zd)
+        for k in range(n):
+            for slot in (E.G_ANCHOR, E.G_OTHER):
+                e = anchor[k] if slot == E.G_ANCHOR else 1 - anchor[k]
+                want = jacobian(lambda zz, k=k, e=e: np.array([contact(P, ends, anchor, k, zz, e)[0]]), z)[0] @ zd
+                got = E._gap_rate(P, ends, anchor, geo, y, k * E.N_GUARD_SLOTS + slot)
+                assert got == pytest.approx(want, abs=1e-12), (k, slot)
+        checked += 1
+
+
 def test_the_grid_points_inside_a_step_are_saved_from_its_dense_output():
     """``_save_grid``: every multiple of save_dt in [t, t_stop] not saved yet, each the row of the
     dense state there (or of the step's ends, without a dense output); none past the capacity."""

@@ -1789,7 +1789,7 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
             # relative velocity unchanged (the pedestal keeps its u̇)
             r = P[k, P_RESTITUTION]
             if math.isnan(r):
-                r = max(0.0, _housner_ratio(P, ends, anchor, k, z, _held_on(P, nstate, tstate, k))[0])
+                r = max(0.0, _housner_ratio(P, ends, anchor, k, z, top)[0])
             w = r * zd[i + 1]
             zd[i] = 0.0
             zd[i + 2] = 0.0
