@@ -1056,6 +1056,55 @@ def test_a_gaps_rate_is_the_rate_of_its_corners_distance_from_the_face():
         checked += 1
 
 
+def _need_in_a_step(crest, x_stop=None):
+    """``_need_inside`` on a step of 0.4 s from t = 2 s of a block standing stuck on a floor whose
+    acceleration 3 cos(2 (t − t_c)) m/s² crests at ``crest`` (a fraction of the step): the need
+    is |a_h|/g, sampled at the step's fifths (up to x_stop). Returns the need booked and
+    its samples."""
+    P, ends, anchor, z = pack(Stack(blocks=(Block(width=0.4, height=0.8, mass=30.0),),
+                                    interfaces=(Interface(friction=_friction(0.9, 0.8)),)))
+    nstate, tstate = np.array([FLAT]), np.array([0])
+    ws = E.new_workspace(1)
+    y = _y(z, np.zeros(3))
+    E._moving(P, nstate, tstate, y, ws)
+    t, hs = 2.0, 0.4
+    loc = _harmonic_floor(3.0, 2.0, -2.0 * (t + crest * hs), 0.0, 0.0, 0.0)
+    F = np.zeros((dop853.INTERPOLATOR_POWER, 8))
+    ym, gm, held = np.zeros(8), np.zeros(E.N_GUARD_SLOTS), np.zeros(1, dtype=np.bool_)
+    n_q = E.N_SUB + 1 if x_stop is None else int(x_stop * E.N_SUB) + 1
+    q = np.full((1, E.N_SUB + 1), -1.0)
+    for i in range(n_q):
+        q[0, i] = E._need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, i / E.N_SUB, 0, ym, ws)
+    summ = np.zeros((1, E.N_BLOCK_SUMMARY))
+    E._need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, q, n_q, 1.0 if x_stop is None else x_stop,
+                   summ, ym, gm, held, ws)
+    return summ[0, E.B_MU_REQ], q[0, :n_q]
+
+
+def test_the_friction_needed_inside_a_step_is_its_peak_whether_inside_or_at_an_end():
+    """The need 3 cos(2 (t − t_c))/g of a block standing under a floor cresting at t_c: where
+    the crest lies between the last two samples (x = 0.95, the largest sample the step's end),
+    the first two (x = 0.05) or two inside (0.55), the peak is 3/g, which no sample reads (3/g·cos 0.04
+    at the nearest); where it lies past the step (x = 1.3, or before it, x = −0.3) the need
+    rises to an end and is the sample there, to the bit (``_falls_inside`` then skips the
+    search). The same with the step stopped by an event at x = 0.7, the crest just before it
+    (0.65) or after (0.9). Tolerance: 1e-14 relative, the rounding of a golden search that
+    stops 1e-12 of the step from the crest (the need's change there is (f''/2)·x², 1e-24)."""
+    peak = 3.0 / G
+    for crest, best in ((0.95, 4), (0.05, 0), (0.55, 2)):
+        booked, q = _need_in_a_step(crest)
+        assert q.max() < peak * (1.0 - 1e-4) and int(np.argmax(q)) == best
+        assert booked == pytest.approx(peak, rel=1e-14), crest
+    for crest, end in ((1.3, 4), (-0.3, 0)):
+        booked, q = _need_in_a_step(crest)
+        assert booked == q[end] and int(np.argmax(q)) == end, crest
+    booked, q = _need_in_a_step(0.65, x_stop=0.7)
+    assert len(q) == 3 and booked == pytest.approx(peak, rel=1e-14)
+    booked, q = _need_in_a_step(0.9, x_stop=0.7)
+    want = 3.0 * math.cos(2.0 * 0.2 * 0.4) / G  # at the event, 0.2 of the step before the crest
+    assert booked == pytest.approx(want, rel=1e-14) and booked > q.max()
+
+
 def test_the_grid_points_inside_a_step_are_saved_from_its_dense_output():
     """``_save_grid``: every multiple of save_dt in [t, t_stop] not saved yet, each the row of the
     dense state there (or of the step's ends, without a dense output); none past the capacity."""

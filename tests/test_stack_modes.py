@@ -387,6 +387,50 @@ def test_the_other_end_must_open_strictly_from_rest_and_within_the_tolerance_aft
     assert [outcomes[VELOCITY, o] for o in (-2.0, -0.5, 0.0, 0.5)] == [False, True, True, True]
 
 
+def test_the_checks_after_an_impulse_hold_at_their_bounds_and_a_slip_keeps_its_direction():
+    """``_candidate_ok``'s other conditions at their bounds, each alone deciding:
+    - after an impulse the other end's gap rate may be −tol_rate exactly (≥ −tol_rate), and an
+      open candidate's anchor gap rate likewise (−2, −1, −½ and 0 tol_rate, the tolerance made
+      exactly representable as the product the check computes);
+    - a slip candidate keeps its direction: after an impulse σ·ȧ⁺ ≥ 0 (ȧ⁺ = 0 allowed); from
+      rest σ·ä > 0 strictly; already slipping, nothing is checked here (select_mode filters by
+      ȧ's sign).
+    Ties at exactly the bound and at zero were reached by no run, so mutants moving them (90c30b41,
+    46d3d89e, fa21fe14) survived the other tests."""
+    from rocking.stack.kinematics import end_gap_gradient
+    from rocking.stack.modes import _candidate_ok
+
+    stack = Stack(blocks=(Block(width=0.4, height=1.2, mass=100.0),),
+                  interfaces=(Interface(friction=Friction(static=0.5, kinetic=0.4)),))
+    P, ends, anchor, z = pack(stack)
+    tol_force = 1e-10 * P[0, P_MASS] * G
+    grad = end_gap_gradient(P, ends, anchor, 0, z, 1 - anchor[0])
+    x1 = -1e-9 / grad[1]
+    tol_rate = -(grad[1] * x1)  # the opening the check computes from x = (0, x1, 0), exactly
+    lam = np.array([0.0, 0.0, P[0, P_MASS] * G])
+    flat, rocking = np.array([FLAT]), np.array([ROCK])
+
+    def ok(level, geo, nst, tst, x, zd=np.zeros(3), check_normal=True):
+        return _candidate_ok(level, P, ends, anchor, geo, 0, nst, tst, z, zd, np.asarray(x, dtype=float), lam,
+                             tol_force, tol_rate, check_normal)
+
+    # the other end opening after an impulse, for a flat interface that would rock
+    got = [ok(VELOCITY, flat, ROCK, 0, [0.0, f * x1, 0.0]) for f in (2.0, 1.0, 0.5, 0.0)]
+    assert got == [False, True, True, True]
+    # an open candidate's anchor after an impulse: its gap rate ḋ⁺
+    got = [ok(VELOCITY, rocking, OPEN, 0, [0.0, 0.0, -f * tol_rate]) for f in (2.0, 1.0, 0.5, 0.0)]
+    assert got == [False, True, True, True]
+    # the slip's direction, the normal conditions left out
+    for tst in (1, -1):
+        after = [ok(VELOCITY, rocking, ROCK, tst, [v, 0.0, 0.0], check_normal=False) for v in (-1e-3, 0.0, 1e-3)]
+        assert after == [tst < 0, True, tst > 0], tst
+        start = [ok(ACCELERATION, rocking, ROCK, tst, [v, 0.0, 0.0], check_normal=False) for v in (-1e-3, 0.0, 1e-3)]
+        assert start == [tst < 0, False, tst > 0], tst
+        going = [ok(ACCELERATION, rocking, ROCK, tst, [v, 0.0, 0.0], zd=np.array([tst * 0.1, 0.0, 0.0]),
+                    check_normal=False) for v in (-1e-3, 0.0, 1e-3)]
+        assert going == [True, True, True], tst
+
+
 def test_an_end_that_slides_past_the_lower_blocks_edge_becomes_that_blocks_corner():
     """``refresh_ends`` on a block 2.0 m wide (its corners at x = ±1.0 in its own frame, the same
     numbers as the end types END_L = 1 and END_U = 0) sliding on one 2.5 m wide: while its right
