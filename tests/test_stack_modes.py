@@ -313,6 +313,34 @@ def test_a_mode_solve_pivots_past_a_zero_diagonal():
     np.testing.assert_allclose(lam, [-0.5 * lam_d, 0.0, lam_d], rtol=1e-13, atol=1e-13)
 
 
+def test_a_mode_solve_refuses_a_singular_or_non_finite_system():
+    """solve_mode_in returns False (the candidate fails) where the reduced system has no pivot:
+    the folded row a (M_a + μk·σ·M_d) is zero (M_aa = 1, M_da = −2, M_aφ = 0.3, M_dφ = −0.6,
+    μk = 0.5, a slip that friction locks, a positive definite M), and where M holds a NaN. The
+    random states never meet either (the oracle comparison skips nearly singular ones), so
+    mutant 9892b9a3 (``and`` for ``or``: never refused) survived them."""
+    from rocking.stack.modes import solve_mode_in
+
+    P = np.zeros((1, 12))
+    P[0, P_CAN_SLIP], P[0, P_MU_K], P[0, P_MU_S] = 1.0, 0.5, 0.6
+    M = np.array([[1.0, 0.3, -2.0], [0.3, 2.0, -0.6], [-2.0, -0.6, 10.0]])
+    assert np.all(np.linalg.eigvalsh(M) > 0)
+    assert M[0, 0] + 0.5 * M[2, 0] == 0.0 and M[0, 1] + 0.5 * M[2, 1] == 0.0
+    f = np.array([0.7, -1.1, 3.0])
+
+    def solves(M):
+        x, lam = np.full(3, np.nan), np.full(3, np.nan)
+        scratch = (np.zeros(3, dtype=np.bool_), np.empty(3, dtype=np.int64), np.empty(3, dtype=np.int64),
+                   np.empty((3, 3)), np.empty(3))
+        return solve_mode_in(M, f, P, np.array([ROCK]), np.array([1]), x, lam, *scratch)
+
+    assert not solves(M)
+    assert solves(np.diag([1.0, 2.0, 10.0]))  # (the same call solves a regular system)
+    M_nan = np.diag([1.0, 2.0, 10.0])
+    M_nan[1, 1] = np.nan
+    assert not solves(M_nan)
+
+
 def test_a_veto_of_the_anchors_force_decides_a_tie_for_the_other_corner():
     """A flat block on the floor pushed towards +x a hair above its uplift threshold g·b/h (by 1e-11
     relative): its anchor's (left end's) force is −1e-11 of the weight, within the tolerance, so
