@@ -480,3 +480,35 @@ def test_an_end_that_slides_past_the_lower_blocks_edge_becomes_that_blocks_corne
     z[3] -= 0.2  # and back, the right corner at 1.1: its own corner again
     refresh_ends(P, ends, anchor, 1, z, zd, -1)
     assert list(ends[1, 1]) == [END_U, 1.0] and list(ends[1, 0]) == [END_U, -1.0]
+
+
+def test_an_end_within_the_tolerance_of_the_lower_edge_is_a_tie_the_motion_decides():
+    """``identify_ends`` at the bounds of its tie band: the upper block's left corner at
+    x_l = −b_l + f·tol (and its right corner at b_l − f·tol), f = 2, 1, 0, −1, −2, with the
+    block moving left, not at all, right. Beyond the band (|f| > 1) the inner corner makes the
+    end whatever the motion; within it, bounds included (|x_l + b_l| ≤ tol), the one that stays
+    inner as the block moves: its own corner unless it moves outwards. The positions are dyadic,
+    so the corners sit on the bounds exactly. (Mutants moving the bounds by a comparison's
+    equality, 6f0b2330, cc4cbad9, dc0c70a8, ad9ae035, 51b04fe7, were called equivalent: no run
+    puts a corner exactly there.)"""
+    from rocking.stack.kinematics import END_L
+    from rocking.stack.modes import corner_x, identify_ends
+
+    stack = Stack(blocks=(Block(width=1.0, height=0.5, mass=300.0), Block(width=0.5, height=0.4, mass=50.0)),
+                  interfaces=(Interface(), Interface(friction=Friction(static=0.3, kinetic=0.2))))
+    P, ends, anchor, z = pack(stack)
+    assert anchor[1] == 0 and list(ends[1, 0]) == [END_U, -0.25]
+    tol = 2.0 ** -20
+    out = np.zeros((2, 2))
+    for f in (2, 1, 0, -1, -2):
+        for direction in (-1, 0, 1):
+            for end in (0, 1):
+                z = z.copy()
+                z[3] = -0.5 + f * tol if end == 0 else -f * tol  # the anchor's (left) corner at a
+                xl, xr = corner_x(P, ends, anchor, 1, z)
+                assert (xl, xr)[end] == (-0.5 + f * tol if end == 0 else 0.5 - f * tol)
+                identify_ends(P, ends, anchor, 1, z, direction, tol, out)
+                outwards = direction < 0 if end == 0 else direction > 0
+                own = f > 1 or (abs(f) <= 1 and not outwards)
+                want = [END_U, (-0.25, 0.25)[end]] if own else [END_L, (-0.5, 0.5)[end]]
+                assert list(out[end]) == want, (f, direction, end)
