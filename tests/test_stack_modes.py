@@ -423,8 +423,9 @@ def test_the_checks_after_an_impulse_hold_at_their_bounds_and_a_slip_keeps_its_d
     - a slip candidate keeps its direction: after an impulse σ·ȧ⁺ ≥ 0 (ȧ⁺ = 0 allowed); from
       rest σ·ä > 0 strictly; already slipping, nothing is checked here (select_mode filters by
       ȧ's sign).
+    - a stick holds up to |λ_t| = μs·λ_n + tol_force, that bound included.
     Ties at exactly the bound and at zero were reached by no run, so mutants moving them (90c30b41,
-    46d3d89e, fa21fe14) survived the other tests."""
+    46d3d89e, fa21fe14, 5d53466f) survived the other tests."""
     from rocking.stack.kinematics import end_gap_gradient
     from rocking.stack.modes import _candidate_ok
 
@@ -457,6 +458,14 @@ def test_the_checks_after_an_impulse_hold_at_their_bounds_and_a_slip_keeps_its_d
         going = [ok(ACCELERATION, rocking, ROCK, tst, [v, 0.0, 0.0], zd=np.array([tst * 0.1, 0.0, 0.0]),
                     check_normal=False) for v in (-1e-3, 0.0, 1e-3)]
         assert going == [True, True, True], tst
+    # a stick holds while |λ_t| ≤ μs·λ_n + tol_force, the bound included (dyadic: 0.5·8 + 2⁻²⁰)
+    lam_n, tol = 8.0, 2.0 ** -20
+    P_half = P.copy()
+    P_half[0, P_MU_S] = 0.5
+    for lam_t, holds in ((4.0 + tol, True), (-(4.0 + tol), True), (4.0 + 2 * tol, False), (-(4.0 + 2 * tol), False)):
+        got = _candidate_ok(ACCELERATION, P_half, ends, anchor, rocking, 0, ROCK, 0, z, np.zeros(3), np.zeros(3),
+                            np.array([lam_t, 0.0, lam_n]), tol, tol_rate, False)
+        assert got == holds, lam_t
 
 
 def test_an_end_that_slides_past_the_lower_blocks_edge_becomes_that_blocks_corner():
