@@ -521,3 +521,31 @@ def test_an_end_within_the_tolerance_of_the_lower_edge_is_a_tie_the_motion_decid
                 own = f > 1 or (abs(f) <= 1 and not outwards)
                 want = [END_U, (-0.25, 0.25)[end]] if own else [END_L, (-0.5, 0.5)[end]]
                 assert list(out[end]) == want, (f, direction, end)
+
+
+def test_the_mass_matrix_of_a_column_taller_than_the_parameter_table_is_wide():
+    """``mass_and_forces`` on a column of 13 drums, one more than the 12 columns of the packed
+    parameters P (a mutant sized its list of columns by P's width, c3efe1a9, and the random stacks
+    have 1–3 blocks): M = JᵀWJ and f = Jᵀ(F − Wβ) from the oracle's poses, as in the test above."""
+    from rocking.stack.kinematics import N_P, forward, mass_and_forces, new_frame
+
+    n = N_P + 1
+    rng = np.random.default_rng(13)
+    stack = Stack(blocks=tuple(Block(width=rng.uniform(0.5, 0.6), height=rng.uniform(0.2, 0.4), mass=rng.uniform(50, 90))
+                               for _ in range(n)), interfaces=tuple(Interface() for _ in range(n)))
+    P, ends, anchor, z = pack(stack)
+    assert P.shape == (n, N_P)
+    z = z + rng.uniform(-0.01, 0.01, 3 * n)
+    zd = rng.uniform(-0.2, 0.2, 3 * n)
+    A, beta, C, X, Xd, th, thd = new_frame(n)
+    forward(P, ends, anchor, z, zd, A, beta, C, X, Xd, th, thd)
+    M, f = np.zeros((3 * n, 3 * n)), np.zeros(3 * n)
+    mass_and_forces(P, A, beta, C, 1.5, -0.5, G, M, f)
+    pose = lambda q: poses(P, ends, anchor, q)  # noqa: E731
+    J, curv = jacobian(pose, z), curvature(pose, z, zd)
+    W = np.concatenate([[P[k, P_MASS], P[k, P_MASS], P[k, P_INERTIA]] for k in range(n)])
+    F = np.concatenate([[-P[k, P_MASS] * 1.5, -P[k, P_MASS] * (G - 0.5), 0.0] for k in range(n)])
+    M_want = J.T @ (W[:, None] * J)
+    np.testing.assert_allclose(M, M_want, rtol=0, atol=1e-12 * np.abs(M_want).max())
+    f_want = J.T @ (F - W * curv)
+    np.testing.assert_allclose(f, f_want, rtol=0, atol=1e-8 * np.abs(f_want).max())
