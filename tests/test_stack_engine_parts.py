@@ -29,7 +29,7 @@ import math
 
 import numpy as np
 import pytest
-from oracles.stack_contact import G, Oracle, contact, jacobian, poses, random_state, relative, rot
+from oracles.stack_contact import G, Oracle, contact, jacobian, poses, random_state, random_states, relative, rot
 from scipy.integrate import DOP853, RK45
 
 from rocking.contact.friction import Friction
@@ -1038,12 +1038,7 @@ def test_a_gaps_rate_is_the_rate_of_its_corners_distance_from_the_face():
     step, at random poses and velocities of every coordinate (exact to rounding: 1e-12 m/s on
     rates of order 1 m/s)."""
     rng = np.random.default_rng(20261207)
-    checked = 0
-    while checked < 40:
-        state = random_state(rng, ACCELERATION)
-        if state is None:
-            continue
-        P, ends, anchor, geo, z, _, _ = state
+    for P, ends, anchor, geo, z, _, _ in random_states(rng, 40, ACCELERATION):
         n = P.shape[0]
         zd = rng.uniform(-1.0, 1.0, 3 * n)
         y = _y(z, zd)
@@ -1053,7 +1048,6 @@ def test_a_gaps_rate_is_the_rate_of_its_corners_distance_from_the_face():
                 want = jacobian(lambda zz, k=k, e=e: np.array([contact(P, ends, anchor, k, zz, e)[0]]), z)[0] @ zd
                 got = E._gap_rate(P, ends, anchor, geo, y, k * E.N_GUARD_SLOTS + slot)
                 assert got == pytest.approx(want, abs=1e-12), (k, slot)
-        checked += 1
 
 
 def _need_in_a_step(crest, x_stop=None):

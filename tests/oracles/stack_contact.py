@@ -261,6 +261,16 @@ class Oracle:
 
 
 # ---- random stacks in random states -------------------------------------------------------------
+def random_states(rng, count, level):
+    """``count`` states drawn by :func:`random_state`, those it rejects skipped."""
+    drawn = 0
+    while drawn < count:
+        state = random_state(rng, level)
+        if state is not None:
+            drawn += 1
+            yield state
+
+
 def random_state(rng, level, kinetic=(0.6, 1.0)):
     """``kinetic``: the range of μk/μs."""
     n = int(rng.integers(1, 4))
