@@ -549,3 +549,13 @@ def test_the_mass_matrix_of_a_column_taller_than_the_parameter_table_is_wide():
     np.testing.assert_allclose(M, M_want, rtol=0, atol=1e-12 * np.abs(M_want).max())
     f_want = J.T @ (F - W * curv)
     np.testing.assert_allclose(f, f_want, rtol=0, atol=1e-8 * np.abs(f_want).max())
+
+
+def test_the_selections_result_codes_are_distinct():
+    """The engine tells a contact held in tension (SELECT_HELD: run on, the contact watched) from
+    no consistent mode at all (SELECT_NONE: the run stops `inconsistent`) by the code alone; with
+    SELECT_NONE equal to SELECT_HELD (mutant 05c47fef, which no run reached) a failed selection
+    would run on as a held contact."""
+    from rocking.stack.modes import SELECT_HELD
+
+    assert len({SELECT_OK, SELECT_NONE, SELECT_HELD}) == 3
