@@ -1080,7 +1080,7 @@ def test_the_friction_needed_inside_a_step_is_its_peak_whether_inside_or_at_an_e
     the crest lies between the last two samples (x = 0.95, the largest sample the step's end),
     the first two (x = 0.05) or two inside (0.3, 0.55, 0.7), the peak is 3/g, which no sample reads (3/g·cos 0.04
     at the nearest); where it lies past the step (x = 1.3, or before it, x = −0.3) the need
-    rises to an end and is the sample there, to the bit (``_falls_inside`` then skips the
+    rises to an end and is the sample there, to the bit (``_need_peak`` then skips the
     search). The same with the step stopped by an event at x = 0.7, the crest just before it
     (0.65) or after (0.9). Tolerance: 1e-14 relative, the rounding of a golden search that
     stops 1e-12 of the step from the crest (the need's change there is (f''/2)·x², 1e-24)."""

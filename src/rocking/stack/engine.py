@@ -1189,7 +1189,7 @@ def _need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, q, 
     often follows the peak closely). Where the best sample comes within 1e-3 of the
     run's largest need so far (or the parabola through it and its neighbours rises above it), a
     golden-section search between its neighbours finds the peak to 1e-12 of the step, unless
-    that sample is a bracket's end and the need falls from it inwards (:func:`_falls_inside`). Until
+    that sample is a bracket's end and the need falls from it inwards (:func:`_need_peak`). Until
     2026-12-02 the need was read at the step ends and events only: 0.230580 where the two-body
     solver, checked against sympy, reads 0.230609 (a rocking block under a sine; a floor face of
     μs = 0.23059 then slipped with the summary saying it needed less)."""
@@ -1212,46 +1212,37 @@ def _need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, q, 
         if not (qb > (1.0 - 1e-3) * best or est > best):
             continue
         lo, hi = max(0.0, b * dx - dx), min(x_end, b * dx + dx)
-        if (b == n_q - 1 or b == 0) and _falls_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity,
-                                                      b * dx, 1.0 if b == 0 else -1.0, qb, k, ym, ws):
-            summ[k, B_MU_REQ] = max(best, qb)
-            continue
         summ[k, B_MU_REQ] = max(best, qb, _need_peak(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, lo,
-                                                     hi, k, ym, gm, held, ws))
+                                                     hi, b * dx, qb, k, ym, gm, held, ws))
     if x_stop > x_end:
         for k in range(n):
             best = summ[k, B_MU_REQ]
             f_stop = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, x_stop, k, ym, ws)
             if not max(q[k, n_q - 1], f_stop) > (1.0 - 1e-3) * best:
                 continue
-            if _falls_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, x_stop, -1.0, f_stop, k, ym,
-                             ws):
-                summ[k, B_MU_REQ] = max(best, f_stop)
-                continue
             summ[k, B_MU_REQ] = max(best, f_stop, _need_peak(P, ends, anchor, nstate, tstate, t, y, hs, F, loc,
-                                                             gravity, max(0.0, x_end - dx), x_stop, k, ym, gm, held,
-                                                             ws))
+                                                             gravity, max(0.0, x_end - dx), x_stop, x_stop, f_stop, k,
+                                                             ym, gm, held, ws))
 
 
 @njit(cache=True, _nrt=False)
-def _falls_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, x, inward, f_x, k, ym, ws):
-    """Whether the need of interface k, f_x at the end x of a bracket of _need_inside (the largest
-    of its samples there), is below f_x a little way inside (END_PROBE of the step, towards
-    ``inward`` = ±1). The golden section assumes one peak in the bracket; with one peak, a need
-    that falls inward from its end peaks within END_PROBE of that end, and f_x is its value to
-    (f''/2)·END_PROBE² = 5e-13·f'' (f'' per step squared). So the search, ~57 evaluations
-    that converge on that end, is skipped: in a stack at rest on its plinth under a record (the
-    need rising towards the floor's μs) every one of 58 searches did so, half the run's
-    evaluations. (With one peak, an end that the need falls from inwards is also the largest of
-    the bracket's samples: the stretch up to an event is checked without comparing them.)"""
-    return _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, x + inward * END_PROBE, k, ym,
-                    ws) < f_x
-
-
-@njit(cache=True, _nrt=False)
-def _need_peak(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, lo, hi, k, ym, gm, held, ws):
+def _need_peak(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, lo, hi, x_best, f_best, k, ym, gm, held,
+               ws):
     """The largest need of interface k over [lo, hi] of the step (golden section, to 1e-12 of
-    the step)."""
+    the step), where its best sample so far is f_best at x_best.
+
+    Where x_best is an end of the bracket and the need is lower END_PROBE of the step inside it,
+    f_best is returned without the search. The golden section assumes one peak in the bracket;
+    with one peak, a need that falls inward from its end peaks within END_PROBE of that end, and
+    f_best is its value to (f''/2)·END_PROBE² = 5e-13·f'' (f'' per step squared). The search, ~57
+    evaluations that converge on that end, is then wasted: in a stack at rest on its plinth under
+    a record (the need rising towards the floor's μs) every one of 58 searches did so, half the
+    run's evaluations."""
+    if x_best == lo or x_best == hi:
+        inward = 1.0 if x_best == lo else -1.0
+        x_in = x_best + inward * END_PROBE
+        if _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, x_in, k, ym, ws) < f_best:
+            return f_best
     x, f = _golden(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, k, True, lo, hi, 1e-12, ym, gm, held,
                    ws)
     return -f
