@@ -791,6 +791,17 @@ def test_a_turning_point_inside_a_step_counts_for_the_peaks():
     summ[1, E.B_PEAK_PHI] = 0.5
     E._peaks_inside(P, y, F, 1.0, summ)
     assert summ[1, E.B_PEAK_PHI] == 0.5
+    # a rate that starts at exactly zero (a rocking that starts from rest in this step):
+    # φ̇₁ = 0.04 x − 0.08 x² turns at x = 1/2, where φ₁ = 0.03; the zero at the start is not a
+    # change of sign, and the sign the rate takes inside is read back from the middle (the angle
+    # there is insensitive to the position found, 1e-10 of the step: 1e-14 relative is rounding)
+    y[nz + 4], F[0, nz + 4], F[1, nz + 4] = 0.0, -0.04, 0.08
+    y[1] = F[0, 1] = y[nz + 1] = 0.0
+    for x_end, want in ((1.0, 0.03), (0.45, 0.0)):
+        summ = np.zeros((n, E.N_BLOCK_SUMMARY))
+        E._peaks_inside(P, y, F, x_end, summ)
+        assert summ[1, E.B_PEAK_PHI] == pytest.approx(want, rel=1e-14, abs=0.0), x_end
+        assert summ[1, E.B_PEAK_ABS_THETA] == pytest.approx(want, rel=1e-14, abs=0.0), x_end
 
 
 def test_an_event_record_holds_its_fields_and_counts_past_the_capacity():
@@ -1007,6 +1018,14 @@ def test_a_grazing_guard_is_searched_for_its_minimum():
             assert abs(x - 0.5) < 1e-8 and g == pytest.approx(0.001, abs=1e-16)
         else:
             assert g <= 0.0
+    # 0.04 (x − 0.7)² − 0.0005 dips below zero near 0.7 only: the search's first two points are
+    # 0.382 (above zero) and 0.618 (below), and it stops at the second
+    y = np.zeros(8)
+    y[2], F[0, 2], F[1, 2] = 0.0191, -0.016, -0.04
+    x, g = E._minimum(P, ends, anchor, nstate, tstate, 1.0, y, hs, F, _floor(0.0, -12.0), G, E.G_ANCHOR, 0.0, 1.0,
+                      ym, gm, held, ws)
+    assert x == pytest.approx(0.6180339887498949, abs=1e-15) and g == pytest.approx(
+        0.04 * (x - 0.7) ** 2 - 0.0005, abs=1e-17) and g <= 0.0
 
 
 def test_a_graze_is_located_where_its_dip_first_reaches_zero():
@@ -1050,17 +1069,25 @@ def test_a_gaps_rate_is_the_rate_of_its_corners_distance_from_the_face():
                 assert got == pytest.approx(want, abs=1e-12), (k, slot)
 
 
+def _standing_block(mu_s):
+    """A 0.4 × 0.8 m block of 30 kg standing flat and stuck on the floor with friction μs (μk =
+    0.8 μs), at rest: (P, ends, anchor, nstate, tstate, y, ws), the step's moving components
+    listed in ws (``_moving``)."""
+    P, ends, anchor, z = pack(Stack(blocks=(Block(width=0.4, height=0.8, mass=30.0),),
+                                    interfaces=(Interface(friction=_friction(mu_s, 0.8 * mu_s)),)))
+    nstate, tstate = np.array([FLAT]), np.array([0])
+    ws = E.new_workspace(1)
+    y = _y(z, np.zeros(3))
+    E._moving(P, nstate, tstate, y, ws)
+    return P, ends, anchor, nstate, tstate, y, ws
+
+
 def _need_in_a_step(crest, x_stop=None):
     """``_need_inside`` on a step of 0.4 s from t = 2 s of a block standing stuck on a floor whose
     acceleration 3 cos(2 (t − t_c)) m/s² crests at ``crest`` (a fraction of the step): the need
     is |a_h|/g, sampled at the step's fifths (up to x_stop). Returns the need booked and
     its samples."""
-    P, ends, anchor, z = pack(Stack(blocks=(Block(width=0.4, height=0.8, mass=30.0),),
-                                    interfaces=(Interface(friction=_friction(0.9, 0.8)),)))
-    nstate, tstate = np.array([FLAT]), np.array([0])
-    ws = E.new_workspace(1)
-    y = _y(z, np.zeros(3))
-    E._moving(P, nstate, tstate, y, ws)
+    P, ends, anchor, nstate, tstate, y, ws = _standing_block(0.9)
     t, hs = 2.0, 0.4
     loc = _harmonic_floor(3.0, 2.0, -2.0 * (t + crest * hs), 0.0, 0.0, 0.0)
     F = np.zeros((dop853.INTERPOLATOR_POWER, 8))
@@ -1097,6 +1124,170 @@ def test_the_friction_needed_inside_a_step_is_its_peak_whether_inside_or_at_an_e
     booked, q = _need_in_a_step(0.9, x_stop=0.7)
     want = 3.0 * math.cos(2.0 * 0.2 * 0.4) / G  # at the event, 0.2 of the step before the crest
     assert booked == pytest.approx(want, rel=1e-14) and booked > q.max()
+
+
+def test_each_interface_books_its_own_need_whatever_the_one_below_did():
+    """``_need_inside`` on a statue standing on a pedestal at rest, both faces stuck, under a floor
+    2 cos(2 (t − t_c)) m/s² cresting inside a 0.4 s step: both faces then need |a_h|/g, peaking
+    at 2/g. The floor face is passed over in three ways (its best so far already above every
+    sample; its samples all −1, as for a face that does not stand; its best above the need at
+    an event that stops the step) and the top face must still book its own peak, to 1e-14 as
+    in the test above. (Mutants that left the loop over the faces, `break` for `continue`,
+    survived the tests of a single face: 7aef256d and bdd6af2d on an earlier form of this
+    loop.)"""
+    P, ends, anchor, z = pack(Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0),
+                                            Block(width=0.3, height=1.2, mass=100.0)),
+                                    interfaces=(Interface(friction=_friction(0.9, 0.7)),
+                                                Interface(friction=_friction(0.9, 0.7)))))
+    nstate, tstate = np.array([FLAT, FLAT]), np.array([0, 0])
+    ws = E.new_workspace(2)
+    y = _y(z, np.zeros(6))
+    E._moving(P, nstate, tstate, y, ws)
+    t, hs, peak = 2.0, 0.4, 2.0 / G
+    F = np.zeros((dop853.INTERPOLATOR_POWER, 14))
+    ym, gm, held = np.zeros(14), np.zeros(2 * E.N_GUARD_SLOTS), np.zeros(2, dtype=np.bool_)
+    for crest, x_stop in ((0.3, 1.0), (0.65, 0.7)):
+        loc = _harmonic_floor(2.0, 2.0, -2.0 * (t + crest * hs), 0.0, 0.0, 0.0)
+        n_q = int(x_stop * E.N_SUB) + 1
+        q = np.full((2, E.N_SUB + 1), -1.0)
+        for k in range(2):
+            for i in range(n_q):
+                q[k, i] = E._need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, i / E.N_SUB, k, ym, ws)
+        assert q[0, :n_q] == pytest.approx(q[1, :n_q], rel=1e-14) and q[1, :n_q].max() < peak * (1.0 - 1e-4)
+        summ = np.zeros((2, E.N_BLOCK_SUMMARY))
+        summ[0, E.B_MU_REQ] = 1.0
+        E._need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, q, n_q, x_stop, summ, ym, gm, held, ws)
+        assert summ[0, E.B_MU_REQ] == 1.0
+        assert summ[1, E.B_MU_REQ] == pytest.approx(peak, rel=1e-14), crest
+        summ = np.zeros((2, E.N_BLOCK_SUMMARY))
+        q[0] = -1.0
+        E._need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, q, n_q, x_stop, summ, ym, gm, held, ws)
+        # (the stretch up to an event reads the need there afresh, whatever the samples said)
+        assert summ[0, E.B_MU_REQ] == (0.0 if x_stop == 1.0 else pytest.approx(peak, rel=1e-14))
+        assert summ[1, E.B_MU_REQ] == pytest.approx(peak, rel=1e-14), crest
+
+
+def test_a_dip_is_near_where_the_parabola_through_three_samples_bottoms_out_low():
+    """``_dips_near``: the parabola through (−1, ga), (0, gb), (1, gc) has d2 = ga − 2gb + gc, its
+    vertex at xv = (ga − gc)/(2 d2) and its bottom gb − (ga − gc)²/(8 d2). A dip is near when the
+    parabola opens upwards, lo < xv < hi strictly, and the bottom is below GRAZING × the largest
+    sample. Exact cases on each bound (values exact in binary, or rounded alike on both sides),
+    then 2000 random triples against numpy's fit of the same parabola (those within 1e-9 of a
+    bound skipped: the two computations round differently there)."""
+    assert E.GRAZING == 0.2
+    # d2 = 1.25, xv = 0.5/2.5 = 0.2, bottom 0.125 − 0.25/10 = 0.1 < 0.2
+    assert E._dips_near(1.0, 0.125, 0.5, -1.0, 1.0)
+    assert E._dips_near(1.0, 0.125, 0.5, 0.1999, 0.2001)
+    assert not E._dips_near(1.0, 0.125, 0.5, 0.2, 1.0)  # the vertex on lo
+    assert not E._dips_near(1.0, 0.125, 0.5, -1.0, 0.2)  # on hi
+    assert not E._dips_near(1.0, 0.125, 0.5, 0.25, 1.0)  # outside
+    assert not E._dips_near(1.0, 0.25, 0.5, -1.0, 1.0)  # bottom 0.21875 above 0.2
+    assert not E._dips_near(1.0, 0.2, 1.0, -1.0, 1.0)  # bottom exactly 0.2 × the largest
+    assert E._dips_near(1.0, 0.1875, 1.0, -1.0, 1.0)  # bottom 0.1875, the vertex at 0
+    assert not E._dips_near(1.0, 0.5, 0.0, -1.0, 1.0)  # a straight line (d2 = 0)
+    assert not E._dips_near(0.5, 1.0, 0.5, -1.0, 1.0)  # a crest (d2 < 0)
+    rng = np.random.default_rng(20261208)
+    seen = set()
+    for _ in range(2000):
+        ga, gb, gc = rng.uniform(0.0, 1.0, 3)
+        lo, hi = np.sort(rng.uniform(-1.5, 1.5, 2))
+        c2, c1, c0 = np.polyfit([-1.0, 0.0, 1.0], [ga, gb, gc], 2)
+        if c2 <= 1e-9:
+            want = False
+        else:
+            xv, bottom = -c1 / (2.0 * c2), c0 - c1 * c1 / (4.0 * c2)
+            margin = min(abs(xv - lo), abs(xv - hi), abs(bottom - 0.2 * max(ga, gb, gc)))
+            if margin < 1e-9:
+                continue
+            want = lo < xv < hi and bottom < 0.2 * max(ga, gb, gc)
+        assert E._dips_near(ga, gb, gc, lo, hi) == want, (ga, gb, gc, lo, hi)
+        seen.add(want)
+    assert seen == {True, False}
+
+
+def test_a_step_at_rest_fails_at_the_first_crest_of_the_floor_beyond_its_friction():
+    """``_first_crest_failure``: a block standing stuck (μs = 0.3) under a floor whose
+    acceleration A cos(ω(t − t₀)) crests every π/ω = 0.1 s, at 0.035, 0.135 and 0.235 s into a
+    step of 0.25 s, 0.01 s or more from its five samples, which all hold. At rest the stick guard is
+    m(μs(g + a_v) − |a_h|): it first fails where A cos ω(τ − t₀) = μs g before the first crest,
+    τ = t₀ − acos(μs g/A)/ω. With a vertical part B cos ω(t − t₀), B = g/20 and A = μs g, the
+    first crest (+A, g + B under the block) needs μs/1.05 and holds; the second (−A, g − B)
+    needs μs/0.95 and fails where −A cos θ = μs (g + B cos θ), θ = ω(τ − t₀):
+    τ = t₀ + acos(−μs g/(A + μs B))/ω, on the other stick guard. A step that ends before the
+    first crest has no failure, nor one whose crests need less than μs. The fraction is returned
+    at or just past the root, within the 1e-13 s the location stops at."""
+    mu, hs, t = 0.3, 0.25, 2.0
+    omega = 10.0 * math.pi
+    t0 = t + 0.035
+    P, ends, anchor, nstate, tstate, y, ws = _standing_block(mu)
+    F = np.zeros((dop853.INTERPOLATOR_POWER, 8))
+    held = np.zeros(1, dtype=np.bool_)
+
+    def crest_failure(a_h, a_v, x_end):
+        loc = _harmonic_floor(a_h, omega, -omega * t0, a_v, omega if a_v else 0.0, -omega * t0 if a_v else 0.0)
+        gq, gc, gm = (np.zeros(E.N_GUARD_SLOTS) for _ in range(3))
+        E.guards(P, ends, anchor, nstate, tstate, t, y, loc, G, gq, held, ws)
+        for x in np.linspace(0.0, 1.0, E.N_SUB + 1):  # the step's samples hold
+            E.guards(P, ends, anchor, nstate, tstate, t + x * hs, y, loc, G, gm, held, ws)
+            assert gm.min() > 0.0
+        return E._first_crest_failure(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, x_end, gq, gc,
+                                      np.zeros(8), gm, held, ws)
+
+    a_h = 1.02 * mu * G
+    j1, x1 = crest_failure(a_h, 0.0, 1.0)
+    want = (t0 - math.acos(mu * G / a_h) / omega - t) / hs
+    assert j1 in (E.G_STICK_POS, E.G_STICK_NEG) and 0.0 <= (x1 - want) * hs <= 2e-13, (j1, (x1 - want) * hs)
+    assert crest_failure(a_h, 0.0, 0.1) == (-1, 2.0)  # the step ends before the first crest (0.14)
+    assert crest_failure(0.98 * mu * G, 0.0, 1.0) == (-1, 2.0)
+    a_h, a_v = mu * G, 0.05 * G
+    j2, x2 = crest_failure(a_h, a_v, 1.0)
+    want = (t0 + math.acos(-mu * G / (a_h + mu * a_v)) / omega - t) / hs
+    assert {j1, j2} == {E.G_STICK_POS, E.G_STICK_NEG} and 0.0 <= (x2 - want) * hs <= 2e-13, (j2, (x2 - want) * hs)
+    assert crest_failure(a_h, a_v, 0.5) == (-1, 2.0)  # only the first crest (0.14) is inside
+
+
+def test_a_step_at_rest_books_the_friction_needed_at_the_floors_crest_inside_it():
+    """``_track_crest``: a block standing stuck under a floor 3 cos(2(t − t_c)) m/s² needs 3/g at
+    the crest t_c; a step at rest over (t_a, t_b) books it there when the crest lies inside,
+    nothing when it does not, and nothing for a block that rocks (the state of a step that is
+    not at rest changes over it; its need is tracked elsewhere). 1e-14 relative: the rounding of
+    the forces' ratio."""
+    P, ends, anchor, nstate, tstate, y, ws = _standing_block(0.9)
+    loc = _harmonic_floor(3.0, 2.0, -2.0 * 2.3, 0.0, 0.0, 0.0)
+
+    def booked(t_a, t_b, nst=nstate):
+        summ = np.zeros((1, E.N_BLOCK_SUMMARY))
+        E._track_crest(P, ends, anchor, nst, tstate, y, t_a, t_b, np.zeros(1), summ, np.zeros(3), loc, G, ws)
+        return summ[0, E.B_MU_REQ]
+
+    assert booked(2.0, 2.4) == pytest.approx(3.0 / G, rel=1e-14)
+    assert booked(2.0, 2.25) == 0.0 and booked(2.35, 2.4) == 0.0
+    assert booked(2.0, 2.4, np.array([ROCK])) == 0.0
+
+
+def test_a_guard_that_starts_at_zero_is_probed_back_towards_the_start():
+    """``_probe_from_zero``: the gap d(x) = c₁x + c₂x² of a block in flight starts at zero and is
+    negative at x_hi = 0.8. Probed at x_hi/2, x_hi/4, …: with c₁ = 0.04, c₂ = −0.08 it is
+    positive at the first probe, 0.4, and comes back to zero at x = 1/2; with c₁ = 0.001 it is
+    positive only below x = 0.0125, which the sixth probe lands on exactly (d = 0 there, not
+    positive), so the seventh finds it and the zero is 0.0125; with c₁ = −0.04 it never comes
+    back (−1). The zero is returned at or just past the root, within 1e-13 s."""
+    P, ends, anchor, nstate, tstate, ws = _block_in_flight()
+    held = np.zeros(1, dtype=np.bool_)
+    hs, x_hi = 0.05, 0.8
+    for c1, root in ((0.04, 0.5), (0.001, 0.0125), (-0.04, None)):
+        c2 = -0.08
+        y = np.zeros(8)
+        F = np.zeros((dop853.INTERPOLATOR_POWER, 8))
+        F[0, 2], F[1, 2] = c1 + c2, -c2  # y + x(F0 + (1 − x) F1) = (F0 + F1) x − F1 x²
+        g_hi = c1 * x_hi + c2 * x_hi * x_hi
+        x = E._probe_from_zero(P, ends, anchor, nstate, tstate, 1.0, y, hs, F, _floor(0.0, -12.0), G, E.G_ANCHOR,
+                               x_hi, g_hi, np.zeros(8), np.zeros(E.N_GUARD_SLOTS), held, ws, ws[E.WS_ACT],
+                               ws[E.WS_N_ACT][0])
+        if root is None:
+            assert x == -1.0
+        else:
+            assert 0.0 <= (x - root) * hs <= 2e-13, (c1, x - root)
 
 
 def test_the_grid_points_inside_a_step_are_saved_from_its_dense_output():

@@ -468,6 +468,33 @@ def test_the_checks_after_an_impulse_hold_at_their_bounds_and_a_slip_keeps_its_d
         assert got == holds, lam_t
 
 
+def test_a_flat_contact_holds_while_each_ends_normal_force_is_at_least_minus_the_tolerance():
+    """``_candidate_ok`` for a flat interface: each end's normal force (``flat_forces``, from Λ_d
+    and Λ_φ) may be −tol_force exactly, not below (−2, −1, −½ and 0 tol_force at one end, 8 N at
+    the other). A 0.5 m block, so that the other end's lever is ±0.5 and every value is dyadic:
+    the forces the check reads are the ones set, exactly. Mutant d744bdd7 (`n_o <= −tol_force`)
+    moved the tie; no run puts a force on it."""
+    from rocking.stack.kinematics import end_gap_gradient
+    from rocking.stack.modes import _candidate_ok
+
+    stack = Stack(blocks=(Block(width=0.5, height=1.0, mass=100.0),),
+                  interfaces=(Interface(friction=Friction(static=0.5, kinetic=0.4)),))
+    P, ends, anchor, z = pack(stack)
+    grad = end_gap_gradient(P, ends, anchor, 0, z, 1 - anchor[0])
+    assert grad[2] == 1.0 and abs(grad[1]) == 0.5
+    tol = 2.0 ** -20
+
+    def ok(n_a, n_o):
+        lam = np.array([0.0, n_o * grad[1], n_a + n_o])
+        assert flat_forces(P, ends, anchor, 0, z, lam) == (n_a, n_o)
+        return _candidate_ok(ACCELERATION, P, ends, anchor, np.array([FLAT]), 0, FLAT, 0, z, np.zeros(3),
+                             np.zeros(3), lam, tol, 1e-12, True)
+
+    factors = (2.0, 1.0, 0.5, 0.0)
+    assert [ok(8.0, -f * tol) for f in factors] == [False, True, True, True]
+    assert [ok(-f * tol, 8.0) for f in factors] == [False, True, True, True]
+
+
 def test_an_end_that_slides_past_the_lower_blocks_edge_becomes_that_blocks_corner():
     """``refresh_ends`` on a block 2.0 m wide (its corners at x = ±1.0 in its own frame, the same
     numbers as the end types END_L = 1 and END_U = 0) sliding on one 2.5 m wide: while its right
