@@ -634,6 +634,56 @@ def test_the_friction_an_impact_needs_leaves_out_the_restitution_impulse_on_the_
     np.testing.assert_array_equal(E._momentum_before_less_kick(P, ends, anchor, 1, z, 0.0, scale, 2, before), before)
 
 
+def test_the_friction_an_impact_needs_is_the_impulse_across_each_face_over_its_normal_part():
+    """``_impact_needs``: the impulse across interface j is the change of momentum of blocks j …
+    top, Σ m_i (V_i⁺ − V_i⁻), with V⁺ from the oracle's poses differentiated along ż⁺. Split along
+    the face the anchor touches (the lower block's top for an upper corner, the block's own base
+    for a lower corner: the unit vectors rot(Θ, 1, 0) and rot(Θ, 0, 1)), it needs |J_t|/J_n,
+    booked where the interface sticks (or cannot slip) under a stack that stands (each block up
+    to it closed and within atan(b/h)), and where J_n exceeds 1e-6 of the momentum scale Σ m|V⁻|.
+    Random stacks and velocities; both kinds of anchor, slipping and tipped interfaces among
+    them. 1e-9 relative: the complex-step Jacobian is exact to rounding, the ratios are of order 1."""
+    rng = np.random.default_rng(20261209)
+    kinds = set()
+    for P, ends, anchor, geo, z, zd, _ in random_states(rng, 120, VELOCITY):
+        n = P.shape[0]
+        tstate = np.array([int(rng.integers(-1, 2)) if geo[k] >= ROCK and P[k, P_CAN_SLIP] > 0.5 else 0
+                           for k in range(n)])
+        before = rng.uniform(-1.0, 1.0, (n, 2))
+        summ = np.zeros((n, E.N_BLOCK_SUMMARY))
+        summ[:, E.B_MU_REQ] = rng.uniform(0.0, 0.5, n) * (rng.random(n) < 0.3)
+        booked_before = summ[:, E.B_MU_REQ].copy()
+        E._impact_needs(P, ends, anchor, geo, tstate, z, zd, before, summ)
+        velocity = (jacobian(lambda zz: poses(P, ends, anchor, zz), z) @ zd).reshape(n, 3)
+        theta = poses(P, ends, anchor, z)[2::3]
+        scale = sum(P[i, P_MASS] * math.hypot(*before[i]) for i in range(n))
+        for j in range(n):
+            impulse = sum(P[i, P_MASS] * (velocity[i, :2] - before[i]) for i in range(j, n))
+            own = ends[j, anchor[j], 0] != END_U
+            face = theta[j] if own else (theta[j - 1] if j > 0 else 0.0)
+            j_t = impulse @ np.array(rot(face, 1.0, 0.0))
+            j_n = impulse @ np.array(rot(face, 0.0, 1.0))
+            sticks = tstate[j] == 0 or P[j, P_CAN_SLIP] < 0.5
+            stands = all(geo[i] >= ROCK and abs(z[3 * i + 1]) < math.atan2(P[i, P_BU], P[i, P_HU])
+                         for i in range(j + 1))
+            want = booked_before[j]
+            if sticks and stands and j_n > 1e-6 * scale:
+                want = max(want, abs(j_t) / j_n)
+                kinds.add(("booked", own))
+            else:
+                kinds.add("slips" if not sticks else ("falls or flies" if not stands else "pulls"))
+            assert summ[j, E.B_MU_REQ] == pytest.approx(want, rel=1e-9, abs=1e-15), (j, want)
+    assert {("booked", True), ("booked", False), "slips", "falls or flies", "pulls"} <= kinds
+    # the threshold: a block at rest after an impulse m(1, ε) (from V⁻ = −(1, ε)), booked at
+    # 1/ε for ε = 2e-6 of the scale m·|V⁻| and not for 5e-7
+    P, ends, anchor, z = pack(Stack(blocks=(Block(width=0.4, height=0.8, mass=30.0),), interfaces=(Interface(),)))
+    for eps, want in ((2e-6, 5e5), (5e-7, 0.0)):
+        summ = np.zeros((1, E.N_BLOCK_SUMMARY))
+        E._impact_needs(P, ends, anchor, np.array([FLAT]), np.array([0]), z, np.zeros(3), np.array([[-1.0, -eps]]),
+                        summ)
+        assert summ[0, E.B_MU_REQ] == pytest.approx(want, rel=1e-12), eps
+
+
 def test_projecting_onto_a_mode_is_the_nearest_velocity_in_kinetic_energy():
     """``_project_onto_mode``: the velocity with the mode's frozen coordinates at zero that is
     nearest to ż in the kinetic-energy metric (oracle mass matrix), so the kinetic energy falls by
