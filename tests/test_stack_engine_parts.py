@@ -852,6 +852,14 @@ def test_a_turning_point_inside_a_step_counts_for_the_peaks():
         E._peaks_inside(P, y, F, x_end, summ)
         assert summ[1, E.B_PEAK_PHI] == pytest.approx(want, rel=1e-14, abs=0.0), x_end
         assert summ[1, E.B_PEAK_ABS_THETA] == pytest.approx(want, rel=1e-14, abs=0.0), x_end
+    # the same with the rate exactly zero in the middle too: φ̇₁ = 0.08 x (x − 1/2), negative in
+    # between, so φ₁ = 0.01 − 0.08 x(1 − x) turns at x = 1/2 (−0.01); the zero read there is no
+    # sign either, and the search reads on back towards the start (mutant 7d589742 took it for one)
+    y[4], F[0, 4], F[1, 4] = 0.01, 0.0, -0.08
+    F[0, nz + 4], F[1, nz + 4] = 0.04, -0.08
+    summ = np.zeros((n, E.N_BLOCK_SUMMARY))
+    E._peaks_inside(P, y, F, 1.0, summ)
+    assert summ[1, E.B_PEAK_PHI] == pytest.approx(0.01, rel=1e-14, abs=0.0)
 
 
 def test_an_event_record_holds_its_fields_and_counts_past_the_capacity():
