@@ -1140,11 +1140,11 @@ def _standing_block(mu_s):
     return P, ends, anchor, nstate, tstate, y, ws
 
 
-def _need_in_a_step(crest, x_stop=None):
+def _need_in_a_step(crest, x_stop=None, best=0.0):
     """``_need_inside`` on a step of 0.4 s from t = 2 s of a block standing stuck on a floor whose
     acceleration 3 cos(2 (t − t_c)) m/s² crests at ``crest`` (a fraction of the step): the need
-    is |a_h|/g, sampled at the step's fifths (up to x_stop). Returns the need booked and
-    its samples."""
+    is |a_h|/g, sampled at the step's fifths (up to x_stop), the largest need booked before the
+    step ``best``. Returns the need booked and its samples."""
     P, ends, anchor, nstate, tstate, y, ws = _standing_block(0.9)
     t, hs = 2.0, 0.4
     loc = _harmonic_floor(3.0, 2.0, -2.0 * (t + crest * hs), 0.0, 0.0, 0.0)
@@ -1155,6 +1155,7 @@ def _need_in_a_step(crest, x_stop=None):
     for i in range(n_q):
         q[0, i] = E._need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, i / E.N_SUB, 0, ym, ws)
     summ = np.zeros((1, E.N_BLOCK_SUMMARY))
+    summ[0, E.B_MU_REQ] = best
     E._need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, q, n_q, 1.0 if x_stop is None else x_stop,
                    summ, ym, gm, held, ws)
     return summ[0, E.B_MU_REQ], q[0, :n_q]
@@ -1182,6 +1183,15 @@ def test_the_friction_needed_inside_a_step_is_its_peak_whether_inside_or_at_an_e
     booked, q = _need_in_a_step(0.9, x_stop=0.7)
     want = 3.0 * math.cos(2.0 * 0.2 * 0.4) / G  # at the event, 0.2 of the step before the crest
     assert booked == pytest.approx(want, rel=1e-14) and booked > q.max()
+    # A crest midway between two samples (x = 0.375) reads 3/g·cos 0.1 there, 0.5 % low: with a
+    # need of 0.998 · 3/g booked before, the samples alone are more than 1e-3 below it, and the
+    # parabola through the best sample and its neighbours, which peaks near 3/g, sends the
+    # search; with 1.001 · 3/g booked, nothing is searched. (Mutant afb6d919, (q₀ − q₂)·2 for
+    # (q₀ − q₂)², put that parabola's peak below the best sample.)
+    booked, q = _need_in_a_step(0.375, best=0.998 * peak)
+    assert q.max() < 0.999 * 0.998 * peak and booked == pytest.approx(peak, rel=1e-14)
+    booked, q = _need_in_a_step(0.375, best=1.001 * peak)
+    assert booked == 1.001 * peak
 
 
 def test_each_interface_books_its_own_need_whatever_the_one_below_did():
