@@ -128,6 +128,71 @@ MODULES: dict[str, list[str]] = {
     "integrators/dopri5.py": ["test_partial_steps.py", "test_dopri5.py"],
 }
 
+# Whole runs of the stack engine that pass uncompiled in seconds (each under 12 s in the
+# interpreter on the 2-CPU machine with two workers busy, 2026-12-07; about 2 min for the 54 in
+# all): with them, a mutant of the step loop or of the event handling that the parts' tests let
+# through is judged in the interpreter too, where it paid a recompilation of the engine (~4 min)
+# and the compiled runs. The first 15 run, uncompiled, every line of engine.py that the 54 run
+# (1314 of its 1383 statements, where the parts' tests run 934; `coverage stack/engine.py`):
+# they come first, so that a mutant there fails early. The rest of test_stack_engine.py (the
+# random stacks, the records at full scale, the long chatters) stays compiled.
+ENGINE_RUNS = [f"test_stack_engine.py::{name}" for name in (
+    "test_flight_when_a_record_drops_the_floor_through_minus_g_along_a_steep_ramp",
+    "test_an_impact_that_would_make_a_corner_pull_holds_it",
+    "test_onset_stack_rocks_as_one",
+    "test_a_corner_at_one_edge_is_not_taken_for_one_passing_it_when_the_other_corner_passes_the_other_edge_first",
+    "test_a_block_pushed_partly_past_the_edge_stops_there_overhanging",
+    "test_bad_stack_inputs_name_the_field",
+    "test_a_block_flush_with_the_edge_below",
+    "test_a_block_sliding_to_the_edge_stops_the_run_undetermined_when_asked",
+    "test_a_block_at_a_harmonic_crest_just_above_its_threshold_rocks_lands_and_peaks_as_its_closed_form_says",
+    "test_a_light_block_at_rest_needs_the_floors_peak_over_g",
+    "test_a_run_whose_blocks_overlap_gives_no_verdict",
+    "test_the_friction_an_impact_needs_counts_in_the_interfaces_need",
+    "test_a_run_of_no_positive_finite_duration_is_refused",
+    "test_an_impact_whose_restitution_has_no_consistent_mode_restitutes_less",
+    "test_paper_normal_force_is_refused_for_stacks",
+    "test_a_block_a_hair_wider_than_its_plinth_slides_over_both_edges_tips_and_falls_off",
+    "test_a_block_at_rest_slips_at_the_first_crest_above_its_friction_wherever_it_falls_in_a_step",
+    "test_a_block_set_rocking_just_before_a_sample_where_the_floor_turns_back_lands_when_its_closed_form_says",
+    "test_a_block_slides_past_the_edge_tips_over_it_and_falls_off",
+    "test_a_column_of_drums_rocking_as_one_restitutes_as_the_one_block",
+    "test_a_gap_that_closes_and_opens_again_before_the_first_sample_is_an_impact",
+    "test_a_jump_of_the_floor_motion_that_breaks_the_grip_starts_the_slip_at_the_jump",
+    "test_a_mode_solve_satisfies_the_equations_of_that_mode",
+    "test_a_record_is_saved_at_its_own_sample_interval_unless_asked_otherwise",
+    "test_a_slipping_interface_that_rocks_onto_the_lower_blocks_corner_keeps_its_slip",
+    "test_a_stack_that_never_moves_reports_no_energy_balance_error",
+    "test_an_impact_that_leaves_another_interface_rocking_slower_than_rest_lands_it",
+    "test_an_impact_that_stops_a_slow_slip_creates_no_energy",
+    "test_an_impulse_is_split_along_the_face_of_the_block_it_crosses_onto",
+    "test_energy_balance_and_dissipation",
+    "test_enough_top_friction_changes_nothing",
+    "test_flight_when_the_floor_falls_faster_than_gravity",
+    "test_friction_never_creates_energy_in_a_three_block_stack",
+    "test_mirror_symmetry",
+    "test_onset_stack_slides_on_floor",
+    "test_onset_upper_block_rocks_first",
+    "test_onset_upper_block_slides_first",
+    "test_similarity_law",
+    "test_single_block_matches_todays_solver",
+    "test_sliding_block_matches_todays_solver",
+    "test_stack_rocks_as_one_composite_body",
+    "test_statue_on_sliding_pedestal_matches_todays_solver",
+    "test_statue_on_sliding_pedestal_under_a_record_matches_todays_solver",
+    "test_statue_slipping_on_a_held_pedestal_moves_as_todays_sliding_block",
+    "test_the_contact_states_are_saved_in_their_own_columns",
+    "test_the_friction_a_face_needs_stops_counting_once_the_block_under_it_topples",
+    "test_the_friction_a_rocking_block_needs_is_its_peak_between_the_samples",
+    "test_the_friction_a_rocking_block_needs_peaks_just_before_an_impact_as_its_saved_forces_show",
+    "test_the_friction_a_stack_at_rest_needs_under_a_harmonic_or_a_pulse_is_its_peak_over_g",
+    "test_the_friction_a_stack_at_rest_needs_under_a_record_is_the_floor_s",
+    "test_the_relative_energy_error_of_a_light_stack_is_reported",
+    "test_the_run_is_called_as_documented_and_its_result_is_read_only",
+    "test_the_sink_check_sees_a_block_tilted_far_on_the_one_below",
+    "test_the_sink_check_sees_the_corners_of_drums_of_equal_width",
+)]
+
 # Module -> test files run first *in the interpreter* (NUMBA_DISABLE_JIT=1): the @njit functions
 # run as plain Python, so nothing is compiled. A mutant these tests kill costs seconds instead of
 # a recompilation of the solver core (~40 s) plus the compiled tests; one they let through goes
@@ -141,11 +206,12 @@ UNCOMPILED: dict[str, list[str]] = {
         "test_sliding_and_slide_rock.py", "test_statue_on_pedestal.py", "test_integrator_crosscheck.py",
         "test_crosscheck_mutants.py", "test_compiled_root_finders.py", "test_mutants.py",
     ],
-    # The stack engine's fast oracles pass uncompiled in ~15 s; its whole-run tests
-    # (test_stack_engine.py: 300 random stacks) take too long in the interpreter and stay compiled.
-    "stack/kinematics.py": ["test_stack_corners.py", "test_stack_modes.py", "test_stack_engine_parts.py"],
-    "stack/modes.py": ["test_stack_corners.py", "test_stack_modes.py", "test_stack_engine_parts.py"],
-    "stack/engine.py": ["test_stack_engine_parts.py"],
+    # The stack engine's fast oracles pass uncompiled in ~15 s, then its whole runs that are quick
+    # in the interpreter (ENGINE_RUNS); the random stacks and the long runs stay compiled.
+    "stack/kinematics.py": ["test_stack_corners.py", "test_stack_modes.py", "test_stack_engine_parts.py",
+                            *ENGINE_RUNS],
+    "stack/modes.py": ["test_stack_corners.py", "test_stack_modes.py", "test_stack_engine_parts.py", *ENGINE_RUNS],
+    "stack/engine.py": ["test_stack_engine_parts.py", *ENGINE_RUNS],
 }
 INTERPRETED = "killed in the interpreter (NUMBA_DISABLE_JIT=1), before any compilation"
 INTERPRETER_CUT = "the interpreter stage ran past"
