@@ -1314,6 +1314,44 @@ def test_a_step_at_rest_fails_at_the_first_crest_of_the_floor_beyond_its_frictio
     assert crest_failure(a_h, a_v, 0.5) == (-1, 2.0)  # only the first crest (0.14) is inside
 
 
+def test_of_two_faces_failing_at_the_same_fraction_the_first_in_order_is_reported():
+    """``_first_crest_failure`` with two faces at rest that reach their friction at the same
+    instant: a 100 kg block on a 300 kg pedestal, both faces μs = 0.3, under the crest of
+    1.02 μs g cos ω(t − t₀). Both stick guards are m_above (μs g − |a_h|), proportional, and
+    located at the same fraction to the bit; the first in order, the floor's, is reported (the
+    rule of every location in the step: a later guard replaces the first only if strictly
+    earlier). Mutant 36e431fc (`<=`) reported the top face's. Where the two locations differ by
+    rounding, the earlier is reported, whichever face it is (a 7 kg block on a 40 kg pedestal:
+    the top face's, 2.6e-16 of the step earlier): which face slides first then follows the
+    rounding, docs/theory/stack.md §9."""
+    P, ends, anchor, z = pack(Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0),
+                                            Block(width=0.6, height=0.8, mass=100.0)),
+                                    interfaces=(Interface(friction=_friction(0.3, 0.2)),
+                                                Interface(friction=_friction(0.3, 0.2)))))
+    nstate, tstate = np.array([FLAT, FLAT]), np.array([0, 0])
+    ws = E.new_workspace(2)
+    y = _y(z, np.zeros(6))
+    E._moving(P, nstate, tstate, y, ws)
+    t, hs, omega = 2.0, 0.25, 10.0 * math.pi
+    t0 = t + 0.035
+    loc = _harmonic_floor(1.02 * 0.3 * G, omega, -omega * t0, 0.0, 0.0, 0.0)
+    F = np.zeros((dop853.INTERPOLATOR_POWER, 14))
+    held = np.zeros(2, dtype=np.bool_)
+    gq, gc, gm = (np.zeros(2 * E.N_GUARD_SLOTS) for _ in range(3))
+    E.guards(P, ends, anchor, nstate, tstate, t, y, loc, G, gq, held, ws)
+    E.guards(P, ends, anchor, nstate, tstate, t0, y, loc, G, gc, held, ws)
+    failing = [j for j in range(2 * E.N_GUARD_SLOTS) if gq[j] > 0.0 and gc[j] <= 0.0]
+    assert len(failing) == 2 and [j // E.N_GUARD_SLOTS for j in failing] == [0, 1]
+    roots = [E._locate(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, j, 0.0, (t0 - t) / hs, gq[j], gc[j],
+                       np.zeros(14), gm, held, ws) for j in failing]
+    # equal to the bit on the development machine (x86-64, AVX-512); another libm or fused
+    # multiply-adds may round them apart, and then the earlier is the one
+    want = failing[0] if roots[0] <= roots[1] else failing[1]
+    j, x = E._first_crest_failure(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, 1.0, gq, gc, np.zeros(14), gm,
+                                  held, ws)
+    assert (j, x) == (want, min(roots))
+
+
 def test_a_step_at_rest_books_the_friction_needed_at_the_floors_crest_inside_it():
     """``_track_crest``: a block standing stuck under a floor 3 cos(2(t − t_c)) m/s² needs 3/g at
     the crest t_c; a step at rest over (t_a, t_b) books it there when the crest lies inside,
