@@ -2071,3 +2071,26 @@ def test_a_light_block_at_rest_needs_the_floors_peak_over_g():
     r = simulate_stack(stack, rocking.Harmonic(amplitude=1.0, frequency=2.0, cycles=2.0, form="sin"), duration=1.5)
     assert r.blocks[0]["first_rocking_time"] is None
     assert r.interfaces[0]["required_friction"] == pytest.approx(1.0 / 9.80665, rel=1e-12)
+
+
+@pytest.mark.parametrize("masses", [(300.0, 100.0), (40.0, 7.0), (1.0, 1.0), (250.0, 60.0), (500.0, 80.0),
+                                    (120.0, 45.0)])
+def test_faces_of_equal_friction_at_their_limit_together_slip_at_the_top_whatever_the_rounding(masses):
+    """A statue (0.6 × 0.8 m) at rest on a pedestal (0.8 × 0.5 m), both faces μs = 0.3, μk = 0.2,
+    under 1.02 μs g sin ωt (5 Hz): both faces need sin ωt /0.98 · μs and reach their limit together
+    at t* = asin(1/1.02)/ω, where Coulomb's law lets either slip. The rule (docs/theory/stack.md
+    §5): the highest face gives way, as the mode order has it from rest. So the statue slides on
+    its pedestal from t* (to the 1e-9 s of event location), the floor face holds for the two
+    cycles, for every pair of masses. (Before the rule, the rounding of the two located roots
+    chose: the floor face slid first for five of these pairs, the top face for 500/80 kg.)"""
+    pedestal, statue = masses
+    stack = Stack(blocks=(Block(name="pedestal", width=0.8, height=0.5, mass=pedestal),
+                          Block(name="statue", width=0.6, height=0.8, mass=statue)),
+                  interfaces=(Interface(friction=Friction(static=0.3, kinetic=0.2)),
+                              Interface(friction=Friction(static=0.3, kinetic=0.2))))
+    motion = rocking.Harmonic(amplitude=1.02 * 0.3 * G, frequency=5.0, cycles=2, form="sin")
+    r = simulate_stack(stack, motion, options=rocking.Options(save_dt=0.01))
+    onset = math.asin(1.0 / 1.02) / (2.0 * math.pi * 5.0)
+    floor, top = r.blocks
+    assert top["first_sliding_time"] == pytest.approx(onset, abs=1e-9) and top["peak_sliding"] > 1e-4
+    assert floor["first_sliding_time"] is None and floor["peak_sliding"] == 0.0

@@ -1352,6 +1352,37 @@ def test_of_two_faces_failing_at_the_same_fraction_the_first_in_order_is_reporte
     assert (j, x) == (want, min(roots))
 
 
+def test_the_stick_a_stick_event_forbids_is_the_highest_face_at_its_limit():
+    """``_face_that_gives_way``: under a floor accelerating at exactly μs·g, a statue and its
+    pedestal at rest, both faces μs = 0.3, have both stick guards at zero (to rounding, far
+    within the force tolerance 1e-10 of the weight): whichever face's event it is, the top face's
+    stick is the one forbidden. With the top face at μs = 0.35 its guard is 0.05 g × its mass
+    above zero and the event's own face is returned; so it is for a top face that already slips
+    or cannot slip."""
+    def stack(mu_top, top_friction=True):
+        P, ends, anchor, z = pack(Stack(
+            blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(width=0.6, height=0.8, mass=100.0)),
+            interfaces=(Interface(friction=_friction(0.3, 0.2)),
+                        Interface(friction=_friction(mu_top, 0.2) if top_friction else None))))
+        return P, ends, anchor, _y(z, np.zeros(6))
+
+    loc = _floor(0.3 * G, 0.0)
+    held = np.zeros(2, dtype=np.bool_)
+    tol = 1e-10 * 400.0 * G
+    flat, stuck = np.array([FLAT, FLAT]), np.array([0, 0])
+    P, ends, anchor, y = stack(0.3)
+    for k in (0, 1):
+        assert E._face_that_gives_way(P, ends, anchor, flat, stuck, 1.0, y, loc, G, k, tol, held,
+                                      E.new_workspace(2)) == 1
+    P, ends, anchor, y = stack(0.35)
+    assert E._face_that_gives_way(P, ends, anchor, flat, stuck, 1.0, y, loc, G, 0, tol, held, E.new_workspace(2)) == 0
+    P, ends, anchor, y = stack(0.3)
+    assert E._face_that_gives_way(P, ends, anchor, flat, np.array([0, 1]), 1.0, y, loc, G, 0, tol, held,
+                                  E.new_workspace(2)) == 0
+    P, ends, anchor, y = stack(0.3, top_friction=False)
+    assert E._face_that_gives_way(P, ends, anchor, flat, stuck, 1.0, y, loc, G, 0, tol, held, E.new_workspace(2)) == 0
+
+
 def test_a_step_at_rest_books_the_friction_needed_at_the_floors_crest_inside_it():
     """``_track_crest``: a block standing stuck under a floor 3 cos(2(t − t_c)) m/s² needs 3/g at
     the crest t_c; a step at rest over (t_a, t_b) books it there when the crest lies inside,

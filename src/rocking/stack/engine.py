@@ -1742,6 +1742,29 @@ def _creates_energy(P, ends, anchor, z, zd_after, t_before, allowance):
 
 
 @njit(cache=True)
+def _face_that_gives_way(P, ends, anchor, nstate, tstate, t, y, loc, gravity, k, tol_force, held, ws):
+    """The face whose stick an event of interface k's stick guard forbids: the highest of the
+    stuck faces at their friction limit at this instant (a stick guard within tol_force of zero),
+    k among them. Faces of equal μs under a stack at rest need the same |a_h|/(g + a_v) and reach
+    their limit together; Coulomb's law then lets either slip, and which guard the location found
+    first was the rounding's choice (a 300/100 kg pedestal and statue slid on the floor, 500/80 kg
+    on the pedestal's top). Forbidding the highest one's stick gives the continuation that the
+    mode order takes from rest (lower faces stuck first, as at the start of a run: the top face
+    slips), whichever guard was located first; where no mode has it slipping, the selection drops
+    the veto (:func:`rocking.stack.modes.select_mode`). docs/theory/stack.md §5."""
+    n = P.shape[0]
+    g = np.empty(n * N_GUARD_SLOTS)
+    guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g, held, ws)
+    face = k
+    for j in range(k + 1, n):
+        b = j * N_GUARD_SLOTS
+        if (nstate[j] >= ROCK and tstate[j] == 0 and P[j, P_CAN_SLIP] > 0.5
+                and min(g[b + G_STICK_POS], g[b + G_STICK_NEG]) <= tol_force):
+            face = j
+    return face
+
+
+@njit(cache=True)
 def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, slot, tol_force, tol_rate,
                   rest_velocity, extra, x_sel, lam_sel, events, n_ev, d_impact, summ, held, stop_at_edge, ws):
     """Apply the event of guard ``slot`` on interface k at time t (y is the state there).
@@ -2013,7 +2036,8 @@ def _handle_event(P, ends, anchor, nstate, tstate, geo, t, y, loc, gravity, k, s
             veto_k, veto_kind = k, 1
         elif slot == G_STICK_POS or slot == G_STICK_NEG:
             if tstate[k] == 0:
-                veto_k, veto_kind = k, 2
+                veto_k, veto_kind = _face_that_gives_way(P, ends, anchor, nstate, tstate, t, y, loc, gravity, k,
+                                                         tol_force, held, ws), 2
             else:
                 # The slip stops, by a plastic impulse: the velocity projected onto the mode with
                 # this interface stuck, its kinetic energy booked with the impacts'. Located alone
