@@ -860,6 +860,17 @@ def test_a_turning_point_inside_a_step_counts_for_the_peaks():
     summ = np.zeros((n, E.N_BLOCK_SUMMARY))
     E._peaks_inside(P, y, F, 1.0, summ)
     assert summ[1, E.B_PEAK_PHI] == pytest.approx(0.01, rel=1e-14, abs=0.0)
+    # a turning point of a negative angle (φ₁ = −0.01 − 0.08 x(1 − x), its rate from −0.08 to
+    # +0.08) with the pedestal in flight, its gap d₀ = 0.05 m: the rate, not the state beside it,
+    # is read at the start (mutant 00aa07c0 read component nz − 4, the gap, and saw no turn)
+    y[:] = 0.0
+    F[:] = 0.0
+    y[2] = 0.05
+    y[4], F[1, 4] = -0.01, -0.08
+    y[nz + 4], F[0, nz + 4] = -0.08, 0.16
+    summ = np.zeros((n, E.N_BLOCK_SUMMARY))
+    E._peaks_inside(P, y, F, 1.0, summ)
+    assert summ[1, E.B_PEAK_PHI] == pytest.approx(0.03, rel=1e-14, abs=0.0)
 
 
 def test_an_event_record_holds_its_fields_and_counts_past_the_capacity():
