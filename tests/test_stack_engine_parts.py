@@ -1203,6 +1203,17 @@ def test_the_friction_needed_inside_a_step_is_its_peak_whether_inside_or_at_an_e
     assert q.max() < 0.999 * 0.998 * peak and booked == pytest.approx(peak, rel=1e-14)
     booked, q = _need_in_a_step(0.375, best=1.001 * peak)
     assert booked == 1.001 * peak
+    # The same where the best so far lies just below the top of that parabola (numpy's fit
+    # through the three samples): 95 % of the way up from the best sample. The estimate must
+    # reach it (mutant bd40b234, 9 for 8 in the vertex's formula, stopped at 8/9 of the way).
+    _, q = _need_in_a_step(0.375)
+    b = int(np.argmax(q))
+    c2, c1, c0 = np.polyfit([-1.0, 0.0, 1.0], q[b - 1:b + 2], 2)
+    top = c0 - c1 * c1 / (4.0 * c2)
+    best = q[b] + 0.95 * (top - q[b])
+    assert q[b] < 0.999 * best < best < top < peak
+    booked, _ = _need_in_a_step(0.375, best=best)
+    assert booked == pytest.approx(peak, rel=1e-14)
 
 
 def test_each_interface_books_its_own_need_whatever_the_one_below_did():
