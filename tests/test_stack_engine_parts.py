@@ -1216,6 +1216,20 @@ def test_the_friction_needed_inside_a_step_is_its_peak_whether_inside_or_at_an_e
     assert booked == pytest.approx(peak, rel=1e-14)
 
 
+def _statue_on_pedestal_at_rest(statue_width, statue_height, floor_friction, top_friction):
+    """A statue (mass 100 kg) standing stuck on a 0.8 × 0.5 m pedestal of 300 kg, at rest:
+    (P, ends, anchor, nstate, tstate, y, ws), the step's moving components listed in ws."""
+    P, ends, anchor, z = pack(Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0),
+                                            Block(width=statue_width, height=statue_height, mass=100.0)),
+                                    interfaces=(Interface(friction=floor_friction),
+                                                Interface(friction=top_friction))))
+    nstate, tstate = np.array([FLAT, FLAT]), np.array([0, 0])
+    ws = E.new_workspace(2)
+    y = _y(z, np.zeros(6))
+    E._moving(P, nstate, tstate, y, ws)
+    return P, ends, anchor, nstate, tstate, y, ws
+
+
 def test_each_interface_books_its_own_need_whatever_the_one_below_did():
     """``_need_inside`` on a statue standing on a pedestal at rest, both faces stuck, under a floor
     2 cos(2 (t − t_c)) m/s² cresting inside a 0.4 s step: both faces then need |a_h|/g, peaking
@@ -1225,14 +1239,8 @@ def test_each_interface_books_its_own_need_whatever_the_one_below_did():
     in the test above. (Mutants that left the loop over the faces, `break` for `continue`,
     survived the tests of a single face: 7aef256d and bdd6af2d on an earlier form of this
     loop.)"""
-    P, ends, anchor, z = pack(Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0),
-                                            Block(width=0.3, height=1.2, mass=100.0)),
-                                    interfaces=(Interface(friction=_friction(0.9, 0.7)),
-                                                Interface(friction=_friction(0.9, 0.7)))))
-    nstate, tstate = np.array([FLAT, FLAT]), np.array([0, 0])
-    ws = E.new_workspace(2)
-    y = _y(z, np.zeros(6))
-    E._moving(P, nstate, tstate, y, ws)
+    P, ends, anchor, nstate, tstate, y, ws = _statue_on_pedestal_at_rest(0.3, 1.2, _friction(0.9, 0.7),
+                                                                         _friction(0.9, 0.7))
     t, hs, peak = 2.0, 0.4, 2.0 / G
     F = np.zeros((dop853.INTERPOLATOR_POWER, 14))
     ym, gm, held = np.zeros(14), np.zeros(2 * E.N_GUARD_SLOTS), np.zeros(2, dtype=np.bool_)
@@ -1344,16 +1352,10 @@ def test_of_two_faces_failing_at_the_same_fraction_the_first_in_order_is_reporte
     rule of every location in the step: a later guard replaces the first only if strictly
     earlier). Mutant 36e431fc (`<=`) reported the top face's. Where the two locations differ by
     rounding, the earlier is reported, whichever face it is (a 7 kg block on a 40 kg pedestal:
-    the top face's, 2.6e-16 of the step earlier): which face slides first then follows the
-    rounding, docs/theory/stack.md §9."""
-    P, ends, anchor, z = pack(Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0),
-                                            Block(width=0.6, height=0.8, mass=100.0)),
-                                    interfaces=(Interface(friction=_friction(0.3, 0.2)),
-                                                Interface(friction=_friction(0.3, 0.2)))))
-    nstate, tstate = np.array([FLAT, FLAT]), np.array([0, 0])
-    ws = E.new_workspace(2)
-    y = _y(z, np.zeros(6))
-    E._moving(P, nstate, tstate, y, ws)
+    the top face's, 2.6e-16 of the step earlier). Which face then gives way no longer follows
+    that choice (``_face_that_gives_way``, docs/theory/stack.md §5)."""
+    P, ends, anchor, nstate, tstate, y, ws = _statue_on_pedestal_at_rest(0.6, 0.8, _friction(0.3, 0.2),
+                                                                         _friction(0.3, 0.2))
     t, hs, omega = 2.0, 0.25, 10.0 * math.pi
     t0 = t + 0.035
     loc = _harmonic_floor(1.02 * 0.3 * G, omega, -omega * t0, 0.0, 0.0, 0.0)
@@ -1382,11 +1384,9 @@ def test_the_stick_a_stick_event_forbids_is_the_highest_face_at_its_limit():
     above zero and the event's own face is returned; so it is for a top face that already slips
     or cannot slip."""
     def stack(mu_top, top_friction=True):
-        P, ends, anchor, z = pack(Stack(
-            blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(width=0.6, height=0.8, mass=100.0)),
-            interfaces=(Interface(friction=_friction(0.3, 0.2)),
-                        Interface(friction=_friction(mu_top, 0.2) if top_friction else None))))
-        return P, ends, anchor, _y(z, np.zeros(6))
+        P, ends, anchor, _, _, y, _ = _statue_on_pedestal_at_rest(
+            0.6, 0.8, _friction(0.3, 0.2), _friction(mu_top, 0.2) if top_friction else None)
+        return P, ends, anchor, y
 
     loc = _floor(0.3 * G, 0.0)
     held = np.zeros(2, dtype=np.bool_)
