@@ -39,7 +39,8 @@ from rocking.stack import Block, Interface, Stack
 from rocking.stack import engine as E
 from rocking.stack.kinematics import (END_U, P_BL, P_BU, P_CAN_SLIP, P_HL, P_HU, P_IMPACT_PAPER, P_INERTIA, P_MASS,
                                       P_MU_K, P_MU_S, P_OFFSET, P_RESTITUTION, anchor_at)
-from rocking.stack.modes import ACCELERATION, FLAT, OPEN, ROCK, SELECT_OK, VELOCITY, flat_forces, select_mode
+from rocking.stack.modes import (ACCELERATION, FLAT, OPEN, ROCK, SELECT_OK, VELOCITY, corner_x, flat_forces,
+                                 select_mode)
 from rocking.stack.simulate import pack
 
 
@@ -1650,6 +1651,32 @@ def test_an_overturn_and_a_slide_past_the_edge_stop_the_run():
             assert status == E.STATUS_PAST_EDGE and list(events[0]) == [0.8, 1, E.G_EDGE, FLAT, 1, 0.0]
         else:
             assert status == 0 and list(events[0, :3]) == [0.8, 1, E.G_EDGE]
+
+
+@pytest.mark.parametrize("overlap, falls", [(1e-9, True), (2.5e-9, True), (5e-9, False)])
+def test_a_corner_landing_where_the_faces_barely_overlap_is_the_fall_off_the_edge(overlap, falls):
+    """A 2 × 4 m block (size h/2 + b/2 = 3 m) overhanging a 1 m block by all but ``overlap`` of
+    its base, rocking back about the lower block's corner (−0.3 rad/s): its own far corner lands
+    where the faces overlap by ``overlap``. Within 1e-9 of the block's size (3e-9 m) that is the
+    instant it slides off the edge: the run ends with it overturned (the fall, ``G_OVERLAP``),
+    not with an impact that the next instant repeats (docs/theory/stack.md §9); at 5e-9 m it is
+    an impact. (Mutant 63fa490d, 1e-9 / size, took 1e-9 m for an impact.)"""
+    P, ends, anchor, z = pack(Stack(blocks=(Block(width=1.0, height=0.5, mass=100.0),
+                                            Block(width=2.0, height=4.0, mass=10.0, offset=1.5 - overlap)),
+                                    interfaces=(Interface(), Interface())))
+    zd = np.zeros(6)
+    a, d, ad, dd = anchor_at(P, ends, anchor, 1, z, zd, 1, ends[1, 1, 0], ends[1, 1, 1])
+    anchor = np.array([0, 1])
+    z[3], z[5], zd[4] = a, d, -0.3
+    xl, xr = corner_x(P, ends, anchor, 1, z)
+    assert E._overlap(xl, xr, P[1, P_BL]) == pytest.approx(overlap, rel=1e-6)
+    nstate, tstate = np.array([FLAT, ROCK]), np.array([0, 0])
+    status, _, events, summ = _event(P, ends, anchor, nstate, tstate, _y(z, zd), _floor(0.0, 0.0), 1, E.G_OTHER)
+    if falls:
+        assert status == E.STATUS_OVERTURNED and summ[1, E.B_OVERTURN] == 0.8
+        assert list(events[0, :3]) == [0.8, 1, E.G_OVERLAP]
+    else:
+        assert status == 0 and np.isnan(summ[1, E.B_OVERTURN]) and list(events[0, :3]) == [0.8, 1, E.EVENT_IMPACT]
 
 
 @pytest.mark.parametrize("ah_over_g, tstate_after", [(0.0, 0), (0.45, 0), (0.7, -1)])
