@@ -861,6 +861,15 @@ def test_a_turning_point_inside_a_step_counts_for_the_peaks():
     summ = np.zeros((n, E.N_BLOCK_SUMMARY))
     E._peaks_inside(P, y, F, 1.0, summ)
     assert summ[1, E.B_PEAK_PHI] == pytest.approx(0.01, rel=1e-14, abs=0.0)
+    # and with the turn before the middle (φ̇₁ = 0.08 x (1/4 − x)): the middle's rate has the
+    # end's sign, so the search reads on back to 1/8, where it has the other (mutant 4d6697c0
+    # stopped at the middle, on the end's sign, and saw no turn); φ₁ = 0.01 + 0.08 x(1 − x)
+    # turns at 1/4, at 0.025
+    y[4], F[0, 4], F[1, 4] = 0.01, 0.0, 0.08
+    F[0, nz + 4], F[1, nz + 4] = -0.06, 0.08
+    summ = np.zeros((n, E.N_BLOCK_SUMMARY))
+    E._peaks_inside(P, y, F, 1.0, summ)
+    assert summ[1, E.B_PEAK_PHI] == pytest.approx(0.025, rel=1e-14, abs=0.0)
     # a turning point of a negative angle (φ₁ = −0.01 − 0.08 x(1 − x), its rate from −0.08 to
     # +0.08) with the pedestal in flight, its gap d₀ = 0.05 m: the rate, not the state beside it,
     # is read at the start (mutant 00aa07c0 read component nz − 4, the gap, and saw no turn)
