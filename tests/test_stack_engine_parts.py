@@ -1161,6 +1161,18 @@ def _standing_block(mu_s, mass=30.0):
     return P, ends, anchor, nstate, tstate, y, ws
 
 
+def _sampled_needs(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, x_stop, ws):
+    """The need of every interface at the step's samples i/N_SUB up to x_stop, as the step loop
+    hands them to ``_need_inside`` (−1 past x_stop): (q, the number of samples n_q)."""
+    n_q = int(x_stop * E.N_SUB) + 1
+    q = np.full((P.shape[0], E.N_SUB + 1), -1.0)
+    for k in range(P.shape[0]):
+        for i in range(n_q):
+            q[k, i] = E._need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, i / E.N_SUB, k,
+                                 np.zeros(y.shape[0]), ws)
+    return q, n_q
+
+
 def _need_in_a_step(crest, x_stop=None, best=0.0):
     """``_need_inside`` on a step of 0.4 s from t = 2 s of a block standing stuck on a floor whose
     acceleration 3 cos(2 (t − t_c)) m/s² crests at ``crest`` (a fraction of the step): the need
@@ -1171,10 +1183,7 @@ def _need_in_a_step(crest, x_stop=None, best=0.0):
     loc = _harmonic_floor(3.0, 2.0, -2.0 * (t + crest * hs), 0.0, 0.0, 0.0)
     F = np.zeros((dop853.INTERPOLATOR_POWER, 8))
     ym, gm, held = np.zeros(8), np.zeros(E.N_GUARD_SLOTS), np.zeros(1, dtype=np.bool_)
-    n_q = E.N_SUB + 1 if x_stop is None else int(x_stop * E.N_SUB) + 1
-    q = np.full((1, E.N_SUB + 1), -1.0)
-    for i in range(n_q):
-        q[0, i] = E._need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, i / E.N_SUB, 0, ym, ws)
+    q, n_q = _sampled_needs(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, 1.0 if x_stop is None else x_stop, ws)
     summ = np.zeros((1, E.N_BLOCK_SUMMARY))
     summ[0, E.B_MU_REQ] = best
     E._need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, q, n_q, 1.0 if x_stop is None else x_stop,
@@ -1256,11 +1265,7 @@ def test_each_interface_books_its_own_need_whatever_the_one_below_did():
     ym, gm, held = np.zeros(14), np.zeros(2 * E.N_GUARD_SLOTS), np.zeros(2, dtype=np.bool_)
     for crest, x_stop in ((0.3, 1.0), (0.65, 0.7)):
         loc = _harmonic_floor(2.0, 2.0, -2.0 * (t + crest * hs), 0.0, 0.0, 0.0)
-        n_q = int(x_stop * E.N_SUB) + 1
-        q = np.full((2, E.N_SUB + 1), -1.0)
-        for k in range(2):
-            for i in range(n_q):
-                q[k, i] = E._need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, i / E.N_SUB, k, ym, ws)
+        q, n_q = _sampled_needs(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, x_stop, ws)
         assert q[0, :n_q] == pytest.approx(q[1, :n_q], rel=1e-14) and q[1, :n_q].max() < peak * (1.0 - 1e-4)
         summ = np.zeros((2, E.N_BLOCK_SUMMARY))
         summ[0, E.B_MU_REQ] = 1.0
