@@ -67,6 +67,26 @@ def test_single_block_matches_todays_solver(amplitude, overturns):
     assert abs(r.end_time - ref.end_time) < 1e-9
 
 
+def test_a_run_that_fills_its_event_budget_stops_at_that_event_undetermined():
+    """``max_events``: a run stops at the event that fills its budget, with status "max_events"
+    and an undetermined verdict, its events those of the run without a budget up to there and its
+    last saved instant that event's. A budget of exactly the run's own count stops at its last
+    event (the run cannot know that nothing follows); one more lets it end at rest. (The block
+    rocks under a one-sine pulse 14 % above its uplift value and lands, 135 events in all.)"""
+    stack = Stack(blocks=(Block(**STATUE),), interfaces=(Interface(),))
+    motion = rocking.SinePulse(amplitude=2.8, frequency=2.0)
+    free = simulate_stack(stack, motion, options={"max_events": 5000})
+    count = len(free.events)
+    assert free.status == "completed" and count == 135
+    for budget in (1, 2, 5, count):
+        r = simulate_stack(stack, motion, options={"max_events": budget})
+        assert r.status == "max_events" and r.verdict.startswith("undetermined")
+        assert len(r.events) == budget
+        np.testing.assert_array_equal(r.events, free.events[:budget])
+        assert r.end_time == r.t[-1] == free.events[budget - 1, 0]
+    assert simulate_stack(stack, motion, options={"max_events": count + 1}).status == "completed"
+
+
 def test_sliding_block_matches_todays_solver():
     fr = Friction(static=0.2, kinetic=0.15)
     motion = rocking.SinePulse(amplitude=3.0, frequency=1.0)

@@ -1469,20 +1469,18 @@ def test_a_guard_that_starts_at_zero_is_probed_back_towards_the_start():
 
 def test_the_grid_points_inside_a_step_are_saved_from_its_dense_output():
     """``_save_grid``: every multiple of save_dt in [t, t_stop] not saved yet, each the row of the
-    dense state there (or of the step's ends, without a dense output); none past the capacity."""
+    dense state there; none past the capacity."""
     P, ends, anchor, nstate, tstate, ws = _block_in_flight()
     rng = np.random.default_rng(47)
     y = rng.uniform(-0.1, 0.1, 8)
-    y_end = rng.uniform(-0.1, 0.1, 8)
     F = rng.uniform(-0.1, 0.1, (dop853.INTERPOLATOR_POWER, 8))
-    K = np.zeros((dop853.N_K, 8))
     t, h, save_dt = 0.1003, 0.0125, 0.002
     ncol = 1 + E.N_BLOCK_COLS + E.N_IFACE_COLS + E.N_TAIL
-    for dense_ok, t_stop, cap in ((True, t + h, 100), (True, 0.108, 100), (False, t + h, 100), (True, t + h, 4)):
+    for t_stop, cap in ((t + h, 100), (0.108, 100), (t + h, 4)):
         samples = np.full((cap, ncol), np.nan)
         samples[:2] = 0.0  # two rows already saved
-        n_out, next_grid = E._save_grid(P, ends, anchor, nstate, tstate, t, y, h, F, dense_ok, K, _floor(0, 0), G,
-                                        save_dt, 50, 10_000, samples, 2, cap, np.zeros(1), 0.25, y_end, t_stop, ws)
+        n_out, next_grid = E._save_grid(P, ends, anchor, nstate, tstate, t, y, h, F, G, save_dt, 50, 10_000, samples,
+                                        2, cap, np.zeros(1), 0.25, t_stop, ws)
         grid = [j * save_dt for j in range(50, 100) if t <= j * save_dt <= t_stop]
         grid = grid[:cap - 2]
         assert n_out == 2 + len(grid) and next_grid == 50 + (t > 50 * save_dt) + len(grid)
@@ -1490,10 +1488,7 @@ def test_the_grid_points_inside_a_step_are_saved_from_its_dense_output():
         for r, tg in enumerate(grid):
             x = (tg - t) / h
             state = np.zeros(8)
-            if dense_ok:
-                dop853.dense(y, F, x, state)
-            else:
-                state = y_end if x >= 1.0 else y
+            dop853.dense(y, F, x, state)
             want = np.full((1, ncol), np.nan)
             E._save_row(P, ends, anchor, nstate, tstate, tg, state, G, np.zeros(1), 0.25, want, 0, E.new_workspace(1))
             np.testing.assert_allclose(samples[2 + r], want[0], rtol=0, atol=1e-15)

@@ -713,7 +713,6 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             dopri5.prepare_dense_nested_on(y, K, hs, F, moving, n_moving[0])
         else:
             _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, hs, loc, gravity, K, F, ws)
-        have_dense = True
         tail = tail_ok and g0_ok
         if not g0_ok:
             guards(P, ends, anchor, nstate, tstate, t, y, loc, gravity, g0, held, ws)
@@ -884,9 +883,8 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                 y_new[:] = y
             _track_crest(P, ends, anchor, nstate, tstate, y, t, t + he, slip0, summ, lam, loc, gravity, ws)
             if next_grid < n_grid:
-                n_out, next_grid = _save_grid(P, ends, anchor, nstate, tstate, t, y, hs, F, have_dense, K, loc,
-                                              gravity, save_dt, next_grid, n_grid, samples, n_out, cap, slip0,
-                                              d_impact, y_new, t + he, ws)
+                n_out, next_grid = _save_grid(P, ends, anchor, nstate, tstate, t, y, hs, F, gravity, save_dt,
+                                              next_grid, n_grid, samples, n_out, cap, slip0, d_impact, t + he, ws)
             t = t + he
             y[:] = y_new
             _track(P, ends, anchor, nstate, tstate, y, t, slip0, summ, lam, loc, gravity, ws, False)
@@ -913,11 +911,8 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
             h = max(hs, 1e-6)
             continue
         if next_grid < n_grid:
-            if not have_dense:
-                _dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, hs, loc, gravity, K, F, ws)
-            n_out, next_grid = _save_grid(P, ends, anchor, nstate, tstate, t, y, hs, F, True, K, loc, gravity,
-                                          save_dt, next_grid, n_grid, samples, n_out, cap, slip0, d_impact, y_new,
-                                          t + hs, ws)
+            n_out, next_grid = _save_grid(P, ends, anchor, nstate, tstate, t, y, hs, F, gravity, save_dt, next_grid,
+                                          n_grid, samples, n_out, cap, slip0, d_impact, t + hs, ws)
         _peaks_inside(P, y, F, 1.0, summ)
         _track_crest(P, ends, anchor, nstate, tstate, y, t, t + hs, slip0, summ, lam, loc, gravity, ws)
         t = t + hs
@@ -1317,9 +1312,10 @@ def _save_row(P, ends, anchor, nstate, tstate, t, y, gravity, slip0, d_impact, s
 
 
 @njit(cache=True, _nrt=False)
-def _save_grid(P, ends, anchor, nstate, tstate, t, y, h, F, dense_ok, K, loc, gravity, save_dt, next_grid, n_grid,
-               samples, n_out, cap, slip0, d_impact, y_end, t_stop, ws):
-    """Save the grid points in [t, t_stop] from the dense output of the step (t, t + h)."""
+def _save_grid(P, ends, anchor, nstate, tstate, t, y, h, F, gravity, save_dt, next_grid, n_grid, samples, n_out,
+               cap, slip0, d_impact, t_stop, ws):
+    """Save the grid points in [t, t_stop] from the dense output of the step (t, t + h) (every
+    accepted step has one: it is prepared before the guards are sampled)."""
     ym = ws[WS_WORK]
     while next_grid < n_grid and n_out < cap:
         tg = next_grid * save_dt
@@ -1329,12 +1325,7 @@ def _save_grid(P, ends, anchor, nstate, tstate, t, y, h, F, dense_ok, K, loc, gr
             next_grid += 1
             continue
         x = (tg - t) / h if h > 0.0 else 1.0
-        if dense_ok:
-            dop853.dense_on(y, F, x, ym, ws[WS_ACT], ws[WS_N_ACT][0])
-        else:
-            src = y_end if x >= 1.0 else y
-            for j in range(ym.shape[0]):
-                ym[j] = src[j]
+        dop853.dense_on(y, F, x, ym, ws[WS_ACT], ws[WS_N_ACT][0])
         _save_row(P, ends, anchor, nstate, tstate, tg, ym, gravity, slip0, d_impact, samples, n_out, ws)
         n_out += 1
         next_grid += 1
