@@ -67,6 +67,47 @@ def test_single_block_matches_todays_solver(amplitude, overturns):
     assert abs(r.end_time - ref.end_time) < 1e-9
 
 
+def _floor_displacement(time, accel, t):
+    """The displacement (m) at times t of a floor at rest at time[0] whose acceleration (m/s²) is
+    linear between the samples (time, accel): exact, each piece's cubic."""
+    dt = np.diff(time)
+    v = np.concatenate([[0.0], np.cumsum(0.5 * (accel[:-1] + accel[1:]) * dt)])
+    x = np.concatenate([[0.0], np.cumsum(v[:-1] * dt + accel[:-1] * dt**2 / 3 + accel[1:] * dt**2 / 6)])
+    i = np.clip(np.searchsorted(time, t, side="right") - 1, 0, len(time) - 2)
+    tau = t - time[i]
+    return x[i] + v[i] * tau + accel[i] * tau**2 / 2 + (accel[i + 1] - accel[i]) / dt[i] * tau**3 / 6
+
+
+@pytest.mark.parametrize("on_pedestal", [False, True], ids=["on the floor", "on a held pedestal"])
+@pytest.mark.parametrize("floor", ["harmonic", "record"])
+def test_a_frictionless_face_slides_from_the_first_instant_the_floor_pushes(floor, on_pedestal):
+    """A face of μs = μk = 0 holds nothing: the block above it stays where it is in space and
+    slides by minus the displacement of what it stands on, u(t) = −x_g(t), from t = 0, however
+    the push starts. Under a floor whose acceleration rises from zero at t = 0 (a sine, here as a
+    harmonic and as a record sampled every 0.02 s) its stick bound, −|F|, starts at zero and
+    only falls. Until 2026-12-07 that face stayed stuck to the end of the first step (1 ms:
+    3 µm of slide lost) or to the record's first sample (0.02 s: 1.2 mm, 0.8 %), where
+    rocking.simulate slides from 0. Tolerance: 1e-9 m on a slide of 0.16 m (measured 5e-13)."""
+    fr = Friction(static=0.0, kinetic=0.0)
+    if on_pedestal:  # a pedestal that never slips, a frictionless top face
+        stack = Stack(blocks=(Block(width=0.8, height=0.5, mass=300.0), Block(width=0.6, height=0.3, mass=50.0)),
+                      interfaces=(Interface(), Interface(friction=fr)))
+    else:
+        stack = Stack(blocks=(Block(width=1.0, height=0.5, mass=100.0),), interfaces=(Interface(friction=fr),))
+    k = stack.n - 1
+    w = 2 * np.pi
+    if floor == "harmonic":
+        motion = rocking.Harmonic(amplitude=1.0, frequency=1.0, cycles=1, form="sin")
+    else:
+        time = np.arange(51) * 0.02
+        motion = GroundMotion(time=time, values=np.sin(w * time), name="sine")
+    r = simulate_stack(stack, motion, duration=1.0)
+    x_g = (r.t / w - np.sin(w * r.t) / w**2) if floor == "harmonic" else _floor_displacement(time, np.sin(w * time), r.t)
+    assert r.blocks[k]["first_sliding_time"] == 0.0
+    assert np.max(np.abs(r.sliding[:, k] + x_g)) < 1e-9
+    assert r.blocks[k]["peak_sliding"] == pytest.approx(np.max(np.abs(x_g)), abs=1e-9)
+
+
 def test_a_run_that_fills_its_event_budget_stops_at_that_event_undetermined():
     """``max_events``: a run stops at the event that fills its budget, with status "max_events"
     and an undetermined verdict, its events those of the run without a budget up to there and its

@@ -838,6 +838,14 @@ def test_a_turning_point_inside_a_step_counts_for_the_peaks():
     E._peaks_inside(P, y, F, 0.6, summ)
     assert summ[1, E.B_PEAK_PHI] == pytest.approx(0.03, rel=1e-12)
     assert summ[1, E.B_PEAK_ABS_THETA] == 0.0
+    # θ₁'s rate sums the blocks' own rates, one state component in three, also at the step's
+    # start: with block 1 in flight, its gap d₁ closing at 0.1 m/s beside its rate (mutant
+    # c391c7d2 summed φ̇₀ + ḋ₁ = −0.06 there, of the end's sign, and saw no turn)
+    y[5], y[nz + 5] = 0.02, -0.1
+    summ = np.zeros((n, E.N_BLOCK_SUMMARY))
+    E._peaks_inside(P, y, F, 1.0, summ)
+    assert summ[1, E.B_PEAK_ABS_THETA] == pytest.approx(theta_1, rel=1e-12)
+    y[5] = y[nz + 5] = 0.0
     # a larger peak already booked stays
     summ[1, E.B_PEAK_PHI] = 0.5
     E._peaks_inside(P, y, F, 1.0, summ)
@@ -1176,7 +1184,7 @@ def _sampled_needs(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, x_stop, ws
 def _need_in_a_step(crest, x_stop=None, best=0.0):
     """``_need_inside`` on a step of 0.4 s from t = 2 s of a block standing stuck on a floor whose
     acceleration 3 cos(2 (t − t_c)) m/s² crests at ``crest`` (a fraction of the step): the need
-    is |a_h|/g, sampled at the step's fifths (up to x_stop), the largest need booked before the
+    is |a_h|/g, sampled at the step's quarters (up to x_stop), the largest need booked before the
     step ``best``. Returns the need booked and its samples."""
     P, ends, anchor, nstate, tstate, y, ws = _standing_block(0.9)
     t, hs = 2.0, 0.4
@@ -1213,6 +1221,13 @@ def test_the_friction_needed_inside_a_step_is_its_peak_whether_inside_or_at_an_e
     booked, q = _need_in_a_step(0.9, x_stop=0.7)
     want = 3.0 * math.cos(2.0 * 0.2 * 0.4) / G  # at the event, 0.2 of the step before the crest
     assert booked == pytest.approx(want, rel=1e-14) and booked > q.max()
+    # The crest just past the last sample before an event at x = 0.7 (0.52): the last sample
+    # reads 0.99987 of the peak, the one before it and the event 0.977 and 0.990, with 0.998 of
+    # it booked before. The last sample alone calls for the search up to the event (mutant
+    # d17b0e94 asked the sample before it, skipped the search, and booked 0.99987).
+    booked, q = _need_in_a_step(0.52, x_stop=0.7, best=0.998 * peak)
+    assert len(q) == 3 and q[-2] < 0.997 * peak < q[-1]
+    assert booked == pytest.approx(peak, rel=1e-14)
     # A crest midway between two samples (x = 0.375) reads 3/g·cos 0.1 there, 0.5 % low: with a
     # need of 0.998 · 3/g booked before, the samples alone are more than 1e-3 below it, and the
     # parabola through the best sample and its neighbours, which peaks near 3/g, sends the
@@ -1362,6 +1377,23 @@ def test_a_step_at_rest_fails_at_the_first_crest_of_the_floor_beyond_its_frictio
     assert crest_failure(a_h, a_v, 0.5) == (-1, 2.0)  # only the first crest (0.14) is inside
 
 
+def test_a_frictionless_face_at_rest_under_a_vertical_motion_does_not_fail_at_its_crests():
+    """``_first_crest_failure``: a block standing on a face of μs = 0 under a floor that moves
+    only vertically (g/5 at 5 Hz): no horizontal force acts, so its stick bounds, μs·N ∓ F, are
+    zero at the step's start and at every crest, a tie that holds and not a failure. (Mutant
+    668d567b searched a root from a guard at zero and reported a failure at the step's start.)"""
+    P, ends, anchor, nstate, tstate, y, ws = _standing_block(0.0)
+    t, hs, omega = 2.0, 0.25, 10.0 * math.pi
+    loc = _harmonic_floor(0.0, 0.0, 0.0, 0.2 * G, omega, -omega * (t + 0.035))
+    F = np.zeros((dop853.INTERPOLATOR_POWER, 8))
+    held = np.zeros(1, dtype=np.bool_)
+    gq, gc, gm = (np.zeros(E.N_GUARD_SLOTS) for _ in range(3))
+    E.guards(P, ends, anchor, nstate, tstate, t, y, loc, G, gq, held, ws)
+    assert gq[E.G_STICK_POS] == gq[E.G_STICK_NEG] == 0.0 and gq.min() == 0.0
+    assert E._first_crest_failure(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, 1.0, gq, gc, np.zeros(8), gm,
+                                  held, ws) == (-1, 2.0)
+
+
 def test_of_two_faces_failing_at_the_same_fraction_the_first_in_order_is_reported():
     """``_first_crest_failure`` with two faces at rest that reach their friction at the same
     instant: a 100 kg block on a 300 kg pedestal, both faces μs = 0.3, under the crest of
@@ -1465,6 +1497,35 @@ def test_a_guard_that_starts_at_zero_is_probed_back_towards_the_start():
             assert x == -1.0
         else:
             assert 0.0 <= (x - root) * hs <= 2e-13, (c1, x - root)
+
+
+def test_a_stick_bound_that_starts_at_zero_is_probed_at_the_floors_own_instants():
+    """``_probe_from_zero`` on a force, which depends on the time through the floor: a block
+    standing stuck (μs = 0.3) at t = 2 s under a_h = μs·g and a_v = B sin(ω(τ − t)): its stick
+    bound on the side a_h pushes, m·μs·a_v, is zero at t. With B = g/10 and ω = π/1.5 ms it is
+    positive until T = 1.5 ms and negative at the first sample (x_hi = 1/4 of a step of 10 ms):
+    the probe at x_hi/2 (1.25 ms) finds it positive and the zero found is T, 0.15 of the step,
+    within the 1e-13 s the location stops at (and the rounding of the floor's phase). With B = −g/10 and ω = π/1 s it falls for a second:
+    no probe finds it positive (−1). (Mutant 10032247 read the floor at t + x/hs, seconds away,
+    and found the second one positive at 3.1 s.)"""
+    mu, t, hs, x_hi = 0.3, 2.0, 0.01, 0.25
+    P, ends, anchor, nstate, tstate, y, ws = _standing_block(mu)
+    F = np.zeros((dop853.INTERPOLATOR_POWER, 8))
+    held = np.zeros(1, dtype=np.bool_)
+    for b, omega, want in ((0.1 * G, math.pi / 1.5e-3, 0.15), (-0.1 * G, math.pi, None)):
+        loc = _harmonic_floor(mu * G, 0.0, 0.0, b, omega, -omega * t - 0.5 * math.pi)
+        g_start, g_hi = np.zeros(E.N_GUARD_SLOTS), np.zeros(E.N_GUARD_SLOTS)
+        E.guards(P, ends, anchor, nstate, tstate, t, y, loc, G, g_start, held, ws)
+        E.guards(P, ends, anchor, nstate, tstate, t + x_hi * hs, y, loc, G, g_hi, held, ws)
+        j = E.G_STICK_POS if abs(g_start[E.G_STICK_POS]) < abs(g_start[E.G_STICK_NEG]) else E.G_STICK_NEG
+        assert abs(g_start[j]) < 1e-9 and g_hi[j] < 0.0  # (N: the rounding of the floor's phase at t)
+        x = E._probe_from_zero(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, j, x_hi, g_hi[j], np.zeros(8),
+                               np.zeros(E.N_GUARD_SLOTS), held, ws, ws[E.WS_ACT], ws[E.WS_N_ACT][0])
+        if want is None:
+            assert x == -1.0
+        else:
+            # (from 1e-15 s before: the rounding of the floor's phase, ωt = 4189 rad, is 4e-16 s)
+            assert -1e-15 <= (x - want) * hs <= 2e-13, (x - want) * hs
 
 
 def test_the_grid_points_inside_a_step_are_saved_from_its_dense_output():

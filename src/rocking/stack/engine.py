@@ -655,6 +655,11 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                     x = g0[j] / (g0[j] - g1[j])
                     if x < x_first:
                         x_first, first = x, j
+                elif g0[j] <= 0.0 and g1[j] < -1e3 * tol_force and _is_stick_bound(j, nstate, tstate):
+                    # a stick bound at zero that falls (a frictionless face as the floor's push
+                    # rises from zero): it fails now, not at the piece's end (a record's sample
+                    # later)
+                    x_first, first = 0.0, j
             t_to = t_lim if first < 0 else t + x_first * (t_lim - t)
             while next_grid < n_grid and n_out < cap and next_grid * save_dt <= t_to:
                 if next_grid * save_dt >= t:
@@ -787,6 +792,15 @@ def integrate(P, ends0, anchor0, pieces, breakpoints, t_end, t_settle, y0, gravi
                         # rises, was taken for one that falls, and the same edge event repeated
                         # at one instant until the run stopped `inconsistent` (a random stack
                         # 0.11 mm wider than its plinth under Kobe with a vertical part).
+                        x_first = 0.0
+                        first = j
+                        break
+                    if not opened and g1[j] < -1e3 * tol_force and _is_stick_bound(j, nstate, tstate):
+                        # A stuck face's friction at its bound at the step's start, and beyond it
+                        # from then on: the stick breaks from the start, an event now, decided a
+                        # moment on. A frictionless face at rest under a floor whose push rises
+                        # from zero at t = 0 (its stick bound, −|F|, starts at 0) stayed stuck to
+                        # the end of the first step, 1 ms late, with 3 µm of its slide lost.
                         x_first = 0.0
                         first = j
                         break
@@ -1360,6 +1374,13 @@ def _is_force(j, nstate, tstate):
     if nstate[k] == ROCK:
         return slot == G_ANCHOR or (tstate[k] == 0 and (slot == G_STICK_POS or slot == G_STICK_NEG))
     return False
+
+
+@njit(cache=True, _nrt=False)
+def _is_stick_bound(j, nstate, tstate):
+    """Whether guard j is a stuck face's friction bound, μs·N ∓ F (N)."""
+    slot = j % N_GUARD_SLOTS
+    return (slot == G_STICK_POS or slot == G_STICK_NEG) and _is_force(j, nstate, tstate)
 
 
 @njit(cache=True, _nrt=False, inline="always")
