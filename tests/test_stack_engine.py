@@ -16,7 +16,7 @@ import pytest
 import rocking
 from rocking.analyses.paper import case_named, paper_motion, variant_setup
 from rocking.contact.friction import Friction
-from rocking.excitation.base import KIND_RAMP, KIND_RECTANGLE, ZERO_SIGNAL, AbstractMotion, Signal
+from rocking.excitation.base import KIND_HARMONIC, KIND_RAMP, KIND_RECTANGLE, ZERO_SIGNAL, AbstractMotion, Signal
 from rocking.excitation.record import GroundMotion
 from rocking.report.stack import build_stack_content
 from rocking.stack import Block, Interface, Stack, simulate_stack
@@ -476,6 +476,46 @@ def test_flight_when_the_floor_falls_faster_than_gravity():
         expected = y0 + k * (r.t[after] - t_star) ** 3 / 6
         assert np.max(np.abs(r.pose[after, i, 1] - expected)) < 1e-9
         assert np.max(np.abs(r.pose[:, i, 2])) < 1e-12  # nothing turns
+
+
+class _VerticalSine(AbstractMotion):
+    """No horizontal motion; a_v = −B sin(ωt) (m/s²) for t ≤ end: a floor whose vertical
+    acceleration is not linear in time, so a stack at rest on it is not at rest between samples."""
+
+    def __init__(self, amplitude, omega, end):
+        self.amplitude, self.omega, self.end = amplitude, omega, end
+
+    @property
+    def duration(self):
+        return self.end
+
+    def acceleration(self, t):
+        return np.zeros_like(np.asarray(t, dtype=float))
+
+    def signal(self):
+        return ZERO_SIGNAL
+
+    def vertical_signal(self):
+        # −B sin ωt = B cos(ωt + π/2)
+        return Signal(KIND_HARMONIC, np.array([self.amplitude, self.omega, 0.5 * math.pi, self.end]), np.zeros(0),
+                      np.zeros(0))
+
+    def vertical_acceleration(self, t):
+        t = np.asarray(t, dtype=float)
+        return np.where((t >= 0) & (t <= self.end), -self.amplitude * np.sin(self.omega * t), 0.0)
+
+
+@pytest.mark.parametrize("amplitude", [1.5, 1.01])
+def test_flight_when_a_vertical_harmonic_first_reaches_minus_g(amplitude):
+    """a_v = −B sin ωt with B = 1.5 g or 1.01 g (2 Hz): the stack leaves the floor where a_v
+    first reaches −g, t* = arcsin(g/B)/ω, to 1e-9 s. The stack is at rest before, on a floor whose
+    acceleration is not linear in time: its guards are not either, and the rest jump that
+    holds between a record's samples does not apply (mutant fba704f8 took it over the whole
+    harmonic, whose two ends leave the floor's force positive, and the stack never left it)."""
+    omega = 4.0 * math.pi
+    stack = _pedestal_and_statue(Friction(static=0.3, kinetic=0.25))
+    r = simulate_stack(stack, _VerticalSine(amplitude * G, omega, 0.5), duration=0.5, options={"gravity": G})
+    assert abs(r.blocks[0]["lifted_off_time"] - math.asin(1.0 / amplitude) / omega) < 1e-9
 
 
 @pytest.mark.parametrize("ramp", [1e-9, 1e-8, 1e-7, 1e-6, 1e-5, 1e-3])
@@ -1949,6 +1989,34 @@ def test_a_block_at_rest_slips_at_the_first_crest_above_its_friction_wherever_it
     first = simulate_stack(stack, motion).summary()["blocks"][0]["first_sliding_time"]
     assert first is not None
     assert abs(first - math.asin(1.0 / (1.0 + excess)) / (2.0 * math.pi * frequency)) < 1e-9
+
+
+def _ricker(amplitude, frequency, center, t):
+    """The Ricker wavelet a_p (1 − 2x) e^(−x), x = (πf(t − t₀))², written here from its formula."""
+    x = (math.pi * frequency * (t - center)) ** 2
+    return amplitude * (1.0 - 2.0 * x) * math.exp(-x)
+
+
+@pytest.mark.parametrize("frequency, center, excess", [(2.0, 1.0, 1e-2), (6.0, 2.11, 1e-3), (10.0, 1.0, 1e-3),
+                                                      (15.0, 1.37, 1e-2), (20.0, 2.11, 1e-2), (30.0, 1.0, 1e-3)])
+def test_a_block_at_rest_slips_where_a_ricker_pulse_first_exceeds_its_friction(frequency, center, excess):
+    """A squat block at rest (μs = 0.5) under a Ricker pulse whose peak exceeds μs·g by a fraction
+    ``excess`` starts to slip where the pulse first reaches μs·g, the root before its centre
+    (brentq on the formula, to 1e-14 s), to 1e-9 s. At rest the steps grow to max_step, 0.1 s,
+    with samples 25 ms apart, and the main lobe (1/f wide) passes between them: the crest search
+    of a step at rest finds it (with the crest search's result dropped, mutant bcdb22d7, 21 of 48
+    such pulses never slipped)."""
+    from scipy.optimize import brentq
+
+    mu = 0.5
+    stack = Stack(blocks=(Block(width=3.0, height=0.3, mass=50.0),),
+                  interfaces=(Interface(friction=Friction(static=mu, kinetic=0.45)),))
+    amplitude = mu * G * (1.0 + excess)
+    motion = rocking.RickerPulse(amplitude=amplitude, frequency=frequency, center=center)
+    first = simulate_stack(stack, motion).summary()["blocks"][0]["first_sliding_time"]
+    want = brentq(lambda t: _ricker(amplitude, frequency, center, t) - mu * G, center - 0.3 / frequency, center,
+                  xtol=1e-14)
+    assert first is not None and abs(first - want) < 1e-9
 
 
 # Rocking blocks (width, height, sine amplitude m/s², frequency Hz; 100 kg, two cycles) whose
