@@ -1248,6 +1248,13 @@ def test_the_friction_needed_inside_a_step_is_its_peak_whether_inside_or_at_an_e
     assert q[b] < 0.999 * best < best < top < peak
     booked, _ = _need_in_a_step(0.375, best=best)
     assert booked == pytest.approx(peak, rel=1e-14)
+    # A crest at 0.43, off the middle between two samples: the best sample (0.5) reads 0.99843
+    # of the peak, the parabola through it and both neighbours 0.999986, and 0.9997 of it is
+    # booked. The parabola's curvature takes both neighbours (mutant 4bacc3d5, the one after the
+    # best twice, estimated 0.99943 and skipped the search).
+    booked, q = _need_in_a_step(0.43, best=0.9997 * peak)
+    assert int(np.argmax(q)) == 2 and q.max() < 0.999 * 0.9997 * peak
+    assert booked == pytest.approx(peak, rel=1e-14)
 
 
 def _statue_on_pedestal_at_rest(statue_width, statue_height, floor_friction, top_friction):
