@@ -439,11 +439,11 @@ def test_a_stack_that_never_moves_reports_no_energy_balance_error():
     assert r.summary()["impacts"] == 0 and [f["impacts"] for f in r.interfaces] == [0, 0]
 
 
-class _VerticalRamp(AbstractMotion):
-    """No horizontal motion; the floor accelerates downwards, a_v = −k·t (m/s²), for t ≤ end."""
+class _VerticalOnly(AbstractMotion):
+    """A floor that moves only vertically, up to ``end`` (s); subclasses give the vertical part."""
 
-    def __init__(self, rate, end):
-        self.rate, self.end = rate, end
+    def __init__(self, end):
+        self.end = end
 
     @property
     def duration(self):
@@ -454,6 +454,14 @@ class _VerticalRamp(AbstractMotion):
 
     def signal(self):
         return ZERO_SIGNAL
+
+
+class _VerticalRamp(_VerticalOnly):
+    """No horizontal motion; the floor accelerates downwards, a_v = −k·t (m/s²), for t ≤ end."""
+
+    def __init__(self, rate, end):
+        super().__init__(end)
+        self.rate = rate
 
     def vertical_signal(self):
         return Signal(KIND_RAMP, np.array([-self.rate, 0.0, 0.0, self.end]), np.zeros(0), np.zeros(0))
@@ -478,22 +486,13 @@ def test_flight_when_the_floor_falls_faster_than_gravity():
         assert np.max(np.abs(r.pose[:, i, 2])) < 1e-12  # nothing turns
 
 
-class _VerticalSine(AbstractMotion):
+class _VerticalSine(_VerticalOnly):
     """No horizontal motion; a_v = −B sin(ωt) (m/s²) for t ≤ end: a floor whose vertical
     acceleration is not linear in time, so a stack at rest on it is not at rest between samples."""
 
     def __init__(self, amplitude, omega, end):
-        self.amplitude, self.omega, self.end = amplitude, omega, end
-
-    @property
-    def duration(self):
-        return self.end
-
-    def acceleration(self, t):
-        return np.zeros_like(np.asarray(t, dtype=float))
-
-    def signal(self):
-        return ZERO_SIGNAL
+        super().__init__(end)
+        self.amplitude, self.omega = amplitude, omega
 
     def vertical_signal(self):
         # −B sin ωt = B cos(ωt + π/2)
