@@ -878,6 +878,18 @@ def test_a_turning_point_inside_a_step_counts_for_the_peaks():
     summ = np.zeros((n, E.N_BLOCK_SUMMARY))
     E._peaks_inside(P, y, F, 1.0, summ)
     assert summ[1, E.B_PEAK_PHI] == pytest.approx(0.025, rel=1e-14, abs=0.0)
+    # and a rate that starts at zero and turns twice: φ̇₁ = 0.08 x² − 0.024 x, negative up to
+    # x = 0.3 and positive after, small (0.008) at the middle: the search reads back past the
+    # middle, whose sign is the end's, to 0.25, and finds the turn at 0.3, where
+    # φ₁ = −0.01 − 0.012 x² + (0.08/3) x³ = −0.01036 (mutant 1726f12c read a rate below 1 rad/s
+    # as negative, stopped at the middle and saw no turn)
+    F[:] = 0.0
+    y[4], F[1, 4], F[2, 4] = -0.01, 0.012 - 0.08 / 3, -0.08 / 3
+    F[0, 4] = -F[1, 4]
+    y[nz + 4], F[0, nz + 4], F[1, nz + 4] = 0.0, 0.056, -0.08
+    summ = np.zeros((n, E.N_BLOCK_SUMMARY))
+    E._peaks_inside(P, y, F, 1.0, summ)
+    assert summ[1, E.B_PEAK_PHI] == pytest.approx(0.01 + 0.012 * 0.09 - 0.08 / 3 * 0.027, rel=1e-12, abs=0.0)
     # a turning point of a negative angle (φ₁ = −0.01 − 0.08 x(1 − x), its rate from −0.08 to
     # +0.08) with the pedestal in flight, its gap d₀ = 0.05 m: the rate, not the state beside it,
     # is read at the start (mutant 00aa07c0 read component nz − 4, the gap, and saw no turn)
