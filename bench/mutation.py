@@ -133,9 +133,8 @@ MODULES: dict[str, list[str]] = {
 # all): with them, a mutant of the step loop or of the event handling that the parts' tests let
 # through is judged in the interpreter too, where it paid a recompilation of the engine (~4 min)
 # and the compiled runs. The first 19 run, uncompiled, every line of engine.py that the 58 run
-# (1331 of its 1397 statements with the first 56, on ea78182, `coverage stack/engine.py`; the parts' tests alone
-# ran 934 of 1383):
-# they come first, so that a mutant there fails early. The rest of test_stack_engine.py (the
+# (1331 of its 1397 statements with the first 56, on ea78182, `coverage stack/engine.py`; the
+# parts' tests alone ran 934 of 1383): they come first, so that a mutant there fails early. The rest of test_stack_engine.py (the
 # random stacks, the records at full scale, the long chatters) stays compiled.
 ENGINE_RUNS = [f"test_stack_engine.py::{name}" for name in (
     "test_flight_when_a_record_drops_the_floor_through_minus_g_along_a_steep_ramp",

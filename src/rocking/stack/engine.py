@@ -1774,7 +1774,7 @@ def _face_that_gives_way(P, ends, anchor, nstate, tstate, t, y, loc, gravity, k,
     face = k
     for j in range(k + 1, n):
         b = j * N_GUARD_SLOTS
-        if (nstate[j] >= ROCK and tstate[j] == 0 and P[j, P_CAN_SLIP] > 0.5
+        if (_is_stick_bound(b + G_STICK_POS, nstate, tstate) and P[j, P_CAN_SLIP] > 0.5
                 and min(g[b + G_STICK_POS], g[b + G_STICK_NEG]) <= tol_force):
             face = j
     return face
