@@ -1269,6 +1269,71 @@ def test_the_friction_needed_inside_a_step_is_its_peak_whether_inside_or_at_an_e
     assert booked == pytest.approx(peak, rel=1e-14)
 
 
+def _need_across_a_tip(phi0, phi_dot0, a_h, a_v0, a_v_rate, best):
+    """``_need_inside`` on one accepted DOP853 step of 0.02 s of a 0.4 × 0.8 m block rocking,
+    stuck, on its left corner from φ0 (rad) at φ̇0 (rad/s), under a floor at a_h (m/s²) with its
+    vertical acceleration a_v0 + a_v_rate·t (m/s², m/s³): the block passes its tipping angle
+    α = atan(0.2/0.4) inside the step. Returns (the need booked, with ``best`` booked before;
+    the samples; the fraction of the step where |φ| = α, by brentq on the dense output; the need
+    there, on the side where the block stands)."""
+    from scipy.optimize import brentq
+
+    P, ends, anchor, z = pack(Stack(blocks=(Block(width=0.4, height=0.8, mass=30.0),), interfaces=(Interface(),)))
+    assert anchor[0] == 0 and ends[0, 0, 1] == -0.2  # the left corner: the block tips towards −x, φ < 0
+    z = z.copy()
+    z[1] = phi0
+    y = _y(z, np.array([0.0, phi_dot0, 0.0]))
+    nstate, tstate, t, hs = np.array([ROCK]), np.array([0]), 0.0, 0.02
+    ws = E.new_workspace(1)
+    E._moving(P, nstate, tstate, y, ws)
+    loc = np.array([LOCAL_LINEAR, a_h, 0.0, 0.0, 0.0, LOCAL_LINEAR, a_v0, a_v_rate, t, 0.0])
+    K = np.zeros((dop853.N_K, 8))
+    E._rhs(P, ends, anchor, nstate, tstate, t, y, loc, G, K[0], ws)
+    y_new = np.zeros(8)
+    assert E._step(P, ends, anchor, nstate, tstate, t, y, hs, loc, G, K, y_new, 1e-10, 1e-10, 8, ws) < 1.0
+    F = np.zeros((dop853.INTERPOLATOR_POWER, 8))
+    E._dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, hs, loc, G, K, F, ws)
+    q, n_q = _sampled_needs(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, 1.0, ws)
+    alpha = math.atan2(0.2, 0.4)
+
+    def past_tip(x):
+        out = np.zeros(8)
+        dop853.dense_on(y, F, x, out, ws[E.WS_ACT], ws[E.WS_N_ACT][0])
+        return abs(out[1]) - alpha
+
+    x_tip = brentq(past_tip, 0.0, 1.0, xtol=1e-15)
+    side = -1e-12 if past_tip(0.0) < 0.0 else 1e-12
+    at_tip = E._need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, x_tip + side, 0, np.zeros(8), ws)
+    summ = np.zeros((1, E.N_BLOCK_SUMMARY))
+    summ[0, E.B_MU_REQ] = best
+    E._need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, q, n_q, 1.0, summ, np.zeros(8),
+                   np.zeros(E.N_GUARD_SLOTS), np.zeros(1, dtype=np.bool_), ws)
+    return summ[0, E.B_MU_REQ], q[0], x_tip, at_tip
+
+
+@pytest.mark.parametrize("leaving", [True, False])
+def test_the_friction_needed_up_to_a_tipping_angle_inside_a_step_is_searched_for(leaving):
+    """A block stuck to the floor passes its tipping angle inside a step (tipping out, or
+    rocking back in), as its floor's vertical acceleration falls towards −g (or rises from it):
+    its normal force fails towards the tip and the need |T|/N rises steeply to it, 1.95 (2.05)
+    where the sample a quarter of a step away reads 1.38 (1.24). The need counts while the block
+    stands (|φ| < α), so the need booked is the one at the tip, to 1e-9 (the golden search stops
+    1e-12 of the step from it, where the need changes by ~1e-11), above the 1.7 booked before.
+    Until 2026-12-07 a sample beside the tip (no need there, −1) made no parabola, the best
+    sample was below 0.999 of 1.7, and the stretch was not searched: 1.7 stayed. (Mutants that
+    formed the parabola through the −1, f2bd9a26 and a5335280, estimated 1.57 and 1.41, below
+    1.7, and skipped the search too.)"""
+    alpha = math.atan2(0.2, 0.4)
+    case = ((-(alpha - 0.01), -1.0, 10.0, -7.0, -100.0) if leaving else (-(alpha + 0.005), 1.0, 10.0, -9.0, 150.0))
+    booked, q, x_tip, at_tip = _need_across_a_tip(*case, best=1.7)
+    no_need = [2, 3, 4] if leaving else [0, 1]
+    assert np.all(q[no_need] == -1.0) and np.all(np.delete(q, no_need) >= 0.0) and 0.25 < x_tip < 0.5
+    assert np.all(q < 0.999 * 1.7) and at_tip > 1.9
+    assert booked == pytest.approx(at_tip, rel=1e-9)
+    # With nothing booked before, the best sample alone sends the search, as it always did.
+    assert _need_across_a_tip(*case, best=0.0)[0] == pytest.approx(booked, rel=1e-12)
+
+
 def _statue_on_pedestal_at_rest(statue_width, statue_height, floor_friction, top_friction):
     """A statue (mass 100 kg) standing stuck on a 0.8 × 0.5 m pedestal of 300 kg, at rest:
     (P, ends, anchor, nstate, tstate, y, ws), the step's moving components listed in ws."""

@@ -1202,7 +1202,8 @@ def _need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, q, 
     often follows the peak closely). Where the best sample comes within 1e-3 of the
     run's largest need so far (or the parabola through it and its neighbours rises above it), a
     golden-section search between its neighbours finds the peak to 1e-12 of the step, unless
-    that sample is a bracket's end and the need falls from it inwards (:func:`_need_peak`). Until
+    that sample is a bracket's end and the need falls from it inwards (:func:`_need_peak`); so it
+    does where a neighbour has no need, a block below passing its tipping angle. Until
     2026-12-02 the need was read at the step ends and events only: 0.230580 where the two-body
     solver, checked against sympy, reads 0.230609 (a rocking block under a sine; a floor face of
     μs = 0.23059 then slipped with the summary saying it needed less)."""
@@ -1218,7 +1219,14 @@ def _need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, q, 
             continue
         best = summ[k, B_MU_REQ]
         est = qb
-        if 0 < b < n_q - 1 and q[k, b - 1] >= 0.0 and q[k, b + 1] >= 0.0:
+        if (b > 0 and q[k, b - 1] < 0.0) or (b < n_q - 1 and q[k, b + 1] < 0.0):
+            # A neighbour without a need: a block below passes its tipping angle between the two
+            # samples (within a step nothing else ends a need). Up to that instant the need can
+            # rise far above every sample, its normal force failing as the block tips (1.95
+            # against 1.38 at the sample a quarter of a step before, under a floor falling
+            # towards −g), and no parabola bounds it: the stretch is searched.
+            est = math.inf
+        elif 0 < b < n_q - 1:
             d2 = q[k, b - 1] - 2.0 * qb + q[k, b + 1]
             if d2 < 0.0:
                 est = qb - (q[k, b - 1] - q[k, b + 1]) ** 2 / (8.0 * d2)
