@@ -98,7 +98,13 @@ class StackResponse:
       ``sliding`` (n, N): its centre's displacement along the face below from where it
       started, m; ``normal_state``/``tangential_state`` (n, N): 0 open, 1 rocking, 2 flat;
       0 stuck, ±1 slipping towards ±x;
-    * ``energy``, ``input_work``, ``friction_loss``, ``impact_loss`` (n,), J.
+    * ``energy``, ``input_work``, ``friction_loss``, ``impact_loss`` (n,), J;
+    * ``events`` (m, 6), one row per event: t (s), the interface k, what happened (the guard
+      that fired: 0/1 a contact force or gap at the anchor/other end, 2/3 the stick bounds,
+      4 overturn, 5 an edge reached, 6 the overlap ended; −1 an impact; −2 a change that follows
+      another interface's event), k's normal and tangential state after it (as in the samples:
+      an interface's last row at an instant is the state the run goes on in), and the kinetic
+      energy an impact took (J, else 0).
     """
 
     stack: Stack
