@@ -1936,7 +1936,8 @@ def test_a_far_corner_within_the_rounding_opens_as_its_first_order_change_says()
     held at 0.99 and 1.01 of it (above it the gap is resolved as it reads: False), and an anchor's
     own gap (its coordinate d) is never judged this way. Kills 786c8323 (the far end read as
     1 + anchor, past the end of the table for anchor 1), 17671e4c, 0452ef08 and e9a99568 (the
-    bound's terms and factor) in bench/MUTATION.md's thirty-fourth round."""
+    bound's terms and factor) in bench/MUTATION.md's thirty-fourth round. ``_gap_opened`` adds the
+    gaps open at the step's end (b26d1dee of the fortieth round asked both at once)."""
     rng = np.random.default_rng(12)
     checked = [0, 0]
     while min(checked) < 25:
@@ -1966,6 +1967,13 @@ def test_a_far_corner_within_the_rounding_opens_as_its_first_order_change_says()
             for gap_end in (1.01 * bound, -1.01 * bound):
                 assert not E._opened_below_rounding(P, ends, anchor, j, y, y_new, gap_end, ws)
             assert not E._opened_below_rounding(P, ends, anchor, k * E.N_GUARD_SLOTS + E.G_ANCHOR, y, y_new, 0.0, ws)
+            # ``_gap_opened``, what the step loop asks: a gap open at the step's end opened, whatever
+            # its first-order change says; one at or below zero as the rule above says
+            for gap_end in (0.99 * bound, 1.01 * bound, 1e-3):
+                assert E._gap_opened(P, ends, anchor, j, y, y_new, gap_end, ws)
+            for gap_end in (0.0, -0.99 * bound):
+                assert E._gap_opened(P, ends, anchor, j, y, y_new, gap_end, ws) == (rate > 0.0)
+            assert not E._gap_opened(P, ends, anchor, j, y, y_new, -1.01 * bound, ws)
             # a gap read from its lift-off is not judged again from the step's start
             ws[E.WS_LIFT][k, E.LIFT_MARK] = 1.0
             assert not E._opened_below_rounding(P, ends, anchor, j, y, y_new, 0.0, ws)
