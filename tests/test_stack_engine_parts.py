@@ -1269,6 +1269,37 @@ def test_the_friction_needed_inside_a_step_is_its_peak_whether_inside_or_at_an_e
     assert booked == pytest.approx(peak, rel=1e-14)
 
 
+def test_the_need_is_searched_between_the_best_samples_neighbours_only():
+    """A block standing stuck under a floor whose push 3 cos(ω (t − t_c)) crests twice in a step
+    of 0.4 s (|a_h| every 0.16 s: at 0.28 and 0.68 of the step), with its vertical acceleration
+    −4 + 10 (t − 2) m/s² rising, so that the first crest needs more: the need |a_h|/(g + a_v)
+    peaks at 0.4343 (the formula, maximised here by scipy), the second crest at 0.3525. The
+    best sample (0.25) reads 0.4286; the search between its neighbours (0 to 0.5, one crest)
+    finds the peak to 1e-9. (Mutant 259762c2, b/dx for b·dx, searched up to the step's end:
+    the golden section, which assumes one peak, went to the second crest, and the sample stayed.)"""
+    from scipy.optimize import minimize_scalar
+
+    P, ends, anchor, nstate, tstate, y, ws = _standing_block(0.9)
+    t, hs, x_c = 2.0, 0.4, 0.28
+    omega = math.pi / (0.4 * hs)
+    loc = np.array([LOCAL_COSINE, 3.0, omega, -omega * (t + x_c * hs), 0.0, LOCAL_LINEAR, -4.0, 10.0, t, 0.0])
+    F = np.zeros((dop853.INTERPOLATOR_POWER, 8))
+    q, n_q = _sampled_needs(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, 1.0, ws)
+
+    def need(x):
+        tt = t + x * hs
+        return abs(3.0 * math.cos(omega * (tt - t - x_c * hs))) / (G - 4.0 + 10.0 * (tt - t))
+
+    np.testing.assert_allclose(q[0], [need(i / 4) for i in range(5)], rtol=1e-14)
+    peak = -minimize_scalar(lambda x: -need(x), bounds=(0.0, 0.5), method="bounded", options={"xatol": 1e-12}).fun
+    second = -minimize_scalar(lambda x: -need(x), bounds=(0.5, 1.0), method="bounded", options={"xatol": 1e-12}).fun
+    assert int(np.argmax(q[0])) == 1 and q[0, 1] < peak * (1.0 - 1e-2) and second < q[0, 1]
+    summ = np.zeros((1, E.N_BLOCK_SUMMARY))
+    E._need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, q, n_q, 1.0, summ, np.zeros(8),
+                   np.zeros(E.N_GUARD_SLOTS), np.zeros(1, dtype=np.bool_), ws)
+    assert summ[0, E.B_MU_REQ] == pytest.approx(peak, rel=1e-9)
+
+
 def _need_across_a_tip(phi0, phi_dot0, a_h, a_v0, a_v_rate, best):
     """``_need_inside`` on one accepted DOP853 step of 0.02 s of a 0.4 × 0.8 m block rocking,
     stuck, on its left corner from φ0 (rad) at φ̇0 (rad/s), under a floor at a_h (m/s²) with its
