@@ -2039,6 +2039,29 @@ def test_a_block_at_rest_slips_where_a_ricker_pulse_first_exceeds_its_friction(f
     assert first is not None and abs(first - want) < 1e-9
 
 
+@pytest.mark.parametrize("sign", [1.0, -1.0])
+@pytest.mark.parametrize("frequency, center", [(10.0, 1.0), (20.0, 2.11)])
+def test_a_block_at_rest_starts_to_rock_where_a_ricker_pulse_first_exceeds_its_uplift(frequency, center, sign):
+    """A 0.4 × 1.6 m block that never slips under a Ricker pulse whose peak exceeds its uplift
+    acceleration g·b/h by 1e-3, pushing either way: it starts to rock where the pulse first
+    reaches g·b/h (brentq on the formula), to 1e-9 s. Its main lobe passes between the samples of
+    a step at rest, so the crest search finds the corner force that fails: the left corner's
+    (the interface's first guard) under a push towards −x, the right one's under +x. (Mutant
+    d1fe3b4b, ``first >= 1``, dropped a failure of the first guard: under the −x pushes the block
+    never rocked.)"""
+    from scipy.optimize import brentq
+
+    width, height = 0.4, 1.6
+    stack = Stack(blocks=(Block(width=width, height=height, mass=50.0),), interfaces=(Interface(),))
+    uplift = G * width / height
+    amplitude = sign * uplift * (1.0 + 1e-3)
+    motion = rocking.RickerPulse(amplitude=amplitude, frequency=frequency, center=center)
+    first = simulate_stack(stack, motion, duration=center + 1.0).summary()["blocks"][0]["first_rocking_time"]
+    want = brentq(lambda t: sign * _ricker(amplitude, frequency, center, t) - uplift, center - 0.3 / frequency,
+                  center, xtol=1e-14)
+    assert first is not None and abs(first - want) < 1e-9
+
+
 # Rocking blocks (width, height, sine amplitude m/s², frequency Hz; 100 kg, two cycles) whose
 # floor friction need peaks inside a step: random cases in which a585e4a's engine missed the slip
 # of a floor face just weaker than the need.
