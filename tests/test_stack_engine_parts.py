@@ -1249,6 +1249,11 @@ def test_the_friction_needed_inside_a_step_is_its_peak_whether_inside_or_at_an_e
     assert q.max() < 0.999 * 0.998 * peak and booked == pytest.approx(peak, rel=1e-14)
     booked, q = _need_in_a_step(0.375, best=1.001 * peak)
     assert booked == 1.001 * peak
+    # The same with the best sample the last but one (a crest at 0.64, nearest the sample at 0.75):
+    # its parabola is formed as any other inside one's (mutant 371549ff, b < n_q − 2, formed none
+    # there, estimated the sample itself and skipped the search)
+    booked, q = _need_in_a_step(0.64, best=0.998 * peak)
+    assert int(np.argmax(q)) == 3 and q.max() < 0.999 * 0.998 * peak and booked == pytest.approx(peak, rel=1e-14)
     # The same where the best so far lies just below the top of that parabola (numpy's fit
     # through the three samples): 95 % of the way up from the best sample. The estimate must
     # reach it (mutant bd40b234, 9 for 8 in the vertex's formula, stopped at 8/9 of the way).
