@@ -1305,13 +1305,13 @@ def test_the_need_is_searched_between_the_best_samples_neighbours_only():
     assert summ[0, E.B_MU_REQ] == pytest.approx(peak, rel=1e-9)
 
 
-def _need_across_a_tip(phi0, phi_dot0, a_h, a_v0, a_v_rate, best):
+def _need_across_a_tip(phi0, phi_dot0, a_h, a_v0, a_v_rate, best, x_stop=1.0):
     """``_need_inside`` on one accepted DOP853 step of 0.02 s of a 0.4 × 0.8 m block rocking,
     stuck, on its left corner from φ0 (rad) at φ̇0 (rad/s), under a floor at a_h (m/s²) with its
     vertical acceleration a_v0 + a_v_rate·t (m/s², m/s³): the block passes its tipping angle
     α = atan(0.2/0.4) inside the step. Returns (the need booked, with ``best`` booked before;
     the samples; the fraction of the step where |φ| = α, by brentq on the dense output; the need
-    there, on the side where the block stands)."""
+    there, on the side where the block stands). ``x_stop``: the step cut there by an event."""
     from scipy.optimize import brentq
 
     P, ends, anchor, z = pack(Stack(blocks=(Block(width=0.4, height=0.8, mass=30.0),), interfaces=(Interface(),)))
@@ -1329,7 +1329,7 @@ def _need_across_a_tip(phi0, phi_dot0, a_h, a_v0, a_v_rate, best):
     assert E._step(P, ends, anchor, nstate, tstate, t, y, hs, loc, G, K, y_new, 1e-10, 1e-10, 8, ws) < 1.0
     F = np.zeros((dop853.INTERPOLATOR_POWER, 8))
     E._dense_prepare(P, ends, anchor, nstate, tstate, t, y, y_new, hs, loc, G, K, F, ws)
-    q, n_q = _sampled_needs(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, 1.0, ws)
+    q, n_q = _sampled_needs(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, x_stop, ws)
     alpha = math.atan2(0.2, 0.4)
 
     def past_tip(x):
@@ -1342,7 +1342,7 @@ def _need_across_a_tip(phi0, phi_dot0, a_h, a_v0, a_v_rate, best):
     at_tip = E._need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, x_tip + side, 0, np.zeros(8), ws)
     summ = np.zeros((1, E.N_BLOCK_SUMMARY))
     summ[0, E.B_MU_REQ] = best
-    E._need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, q, n_q, 1.0, summ, np.zeros(8),
+    E._need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, q, n_q, x_stop, summ, np.zeros(8),
                    np.zeros(E.N_GUARD_SLOTS), np.zeros(1, dtype=np.bool_), ws)
     return summ[0, E.B_MU_REQ], q[0], x_tip, at_tip
 
@@ -1358,7 +1358,9 @@ def test_the_friction_needed_up_to_a_tipping_angle_inside_a_step_is_searched_for
     Until 2026-12-07 a sample beside the tip (no need there, −1) made no parabola, the best
     sample was below 0.999 of 1.7, and the stretch was not searched: 1.7 stayed. (Mutants that
     formed the parabola through the −1, f2bd9a26 and a5335280, estimated 1.57 and 1.41, below
-    1.7, and skipped the search too.)"""
+    1.7, and skipped the search too.) The same where an event cuts the step past the tip and the
+    tip lies beyond the last sample: the stretch to the event was searched only where its ends
+    came within 1e-3 of the need booked."""
     alpha = math.atan2(0.2, 0.4)
     case = ((-(alpha - 0.01), -1.0, 10.0, -7.0, -100.0) if leaving else (-(alpha + 0.005), 1.0, 10.0, -9.0, 150.0))
     booked, q, x_tip, at_tip = _need_across_a_tip(*case, best=1.7)
@@ -1368,6 +1370,13 @@ def test_the_friction_needed_up_to_a_tipping_angle_inside_a_step_is_searched_for
     assert booked == pytest.approx(at_tip, rel=1e-9)
     # With nothing booked before, the best sample alone sends the search, as it always did.
     assert _need_across_a_tip(*case, best=0.0)[0] == pytest.approx(booked, rel=1e-12)
+    # The same with the step cut by an event past the tip (at 0.49, or 0.45 rocking back in), the
+    # tip beyond the last sample (0.25): the stretch from that sample to the event is searched.
+    x_stop = 0.49 if leaving else 0.45
+    booked, q, x_tip, at_tip = _need_across_a_tip(*case, best=1.7, x_stop=x_stop)
+    n_q = int(x_stop * E.N_SUB) + 1
+    assert (n_q - 1) / E.N_SUB < x_tip < x_stop and np.all(q[:n_q] < 0.999 * 1.7)
+    assert booked == pytest.approx(at_tip, rel=1e-9)
 
 
 def _statue_on_pedestal_at_rest(statue_width, statue_height, floor_friction, top_friction):

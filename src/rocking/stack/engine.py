@@ -1239,7 +1239,9 @@ def _need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, q, 
         for k in range(n):
             best = summ[k, B_MU_REQ]
             f_stop = _need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, gravity, x_stop, k, ym, ws)
-            if not max(q[k, n_q - 1], f_stop) > (1.0 - 1e-3) * best:
+            # (a tipping angle passed between the last sample and the event: searched, as above)
+            tip = (f_stop < 0.0) != (q[k, n_q - 1] < 0.0)
+            if not (tip or max(q[k, n_q - 1], f_stop) > (1.0 - 1e-3) * best):
                 continue
             summ[k, B_MU_REQ] = max(best, f_stop, _need_peak(P, ends, anchor, nstate, tstate, t, y, hs, F, loc,
                                                              gravity, max(0.0, x_end - dx), x_stop, x_stop, f_stop, k,
