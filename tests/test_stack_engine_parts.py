@@ -1377,6 +1377,15 @@ def test_the_friction_needed_up_to_a_tipping_angle_inside_a_step_is_searched_for
     n_q = int(x_stop * E.N_SUB) + 1
     assert (n_q - 1) / E.N_SUB < x_tip < x_stop and np.all(q[:n_q] < 0.999 * 1.7)
     assert booked == pytest.approx(at_tip, rel=1e-9)
+    # The tip moved across the step (the block started nearer to or farther from it): wherever
+    # the golden section's last two points fall, the one it books is the standing one (mutant
+    # 302f0957, which returned the worse of the two, booked the −1 beyond the tip: 1.7 stayed in
+    # five of these, and the sample's 2.1158 for 2.1293 in the first rocking back).
+    for offset in ((0.0095, 0.0101) if leaving else (0.00475, 0.00555, 0.00575, 0.00595)):
+        moved = (-(alpha - offset),) + case[1:] if leaving else (-(alpha + offset),) + case[1:]
+        booked, q, x_tip, at_tip = _need_across_a_tip(*moved, best=1.7)
+        assert at_tip > max(1.75, q.max())
+        assert booked == pytest.approx(at_tip, rel=1e-9), offset
 
 
 def _statue_on_pedestal_at_rest(statue_width, statue_height, floor_friction, top_friction):
