@@ -1193,6 +1193,16 @@ def _sampled_needs(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, x_stop, ws
     return q, n_q
 
 
+def _booked_need(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, q, n_q, x_stop, best, ws):
+    """The need ``_need_inside`` books for the first interface over a step (its samples q, n_q,
+    up to x_stop), with ``best`` booked before."""
+    summ = np.zeros((P.shape[0], E.N_BLOCK_SUMMARY))
+    summ[0, E.B_MU_REQ] = best
+    E._need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, q, n_q, x_stop, summ, np.zeros(y.shape[0]),
+                   np.zeros(E.N_GUARD_SLOTS * P.shape[0]), np.zeros(P.shape[0], dtype=np.bool_), ws)
+    return summ[0, E.B_MU_REQ]
+
+
 def _need_in_a_step(crest, x_stop=None, best=0.0):
     """``_need_inside`` on a step of 0.4 s from t = 2 s of a block standing stuck on a floor whose
     acceleration 3 cos(2 (t − t_c)) m/s² crests at ``crest`` (a fraction of the step): the need
@@ -1202,13 +1212,9 @@ def _need_in_a_step(crest, x_stop=None, best=0.0):
     t, hs = 2.0, 0.4
     loc = _harmonic_floor(3.0, 2.0, -2.0 * (t + crest * hs), 0.0, 0.0, 0.0)
     F = np.zeros((dop853.INTERPOLATOR_POWER, 8))
-    ym, gm, held = np.zeros(8), np.zeros(E.N_GUARD_SLOTS), np.zeros(1, dtype=np.bool_)
-    q, n_q = _sampled_needs(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, 1.0 if x_stop is None else x_stop, ws)
-    summ = np.zeros((1, E.N_BLOCK_SUMMARY))
-    summ[0, E.B_MU_REQ] = best
-    E._need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, q, n_q, 1.0 if x_stop is None else x_stop,
-                   summ, ym, gm, held, ws)
-    return summ[0, E.B_MU_REQ], q[0, :n_q]
+    x_stop = 1.0 if x_stop is None else x_stop
+    q, n_q = _sampled_needs(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, x_stop, ws)
+    return _booked_need(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, q, n_q, x_stop, best, ws), q[0, :n_q]
 
 
 def test_the_friction_needed_inside_a_step_is_its_peak_whether_inside_or_at_an_end():
@@ -1299,10 +1305,8 @@ def test_the_need_is_searched_between_the_best_samples_neighbours_only():
     peak = -minimize_scalar(lambda x: -need(x), bounds=(0.0, 0.5), method="bounded", options={"xatol": 1e-12}).fun
     second = -minimize_scalar(lambda x: -need(x), bounds=(0.5, 1.0), method="bounded", options={"xatol": 1e-12}).fun
     assert int(np.argmax(q[0])) == 1 and q[0, 1] < peak * (1.0 - 1e-2) and second < q[0, 1]
-    summ = np.zeros((1, E.N_BLOCK_SUMMARY))
-    E._need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, q, n_q, 1.0, summ, np.zeros(8),
-                   np.zeros(E.N_GUARD_SLOTS), np.zeros(1, dtype=np.bool_), ws)
-    assert summ[0, E.B_MU_REQ] == pytest.approx(peak, rel=1e-9)
+    booked = _booked_need(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, q, n_q, 1.0, 0.0, ws)
+    assert booked == pytest.approx(peak, rel=1e-9)
 
 
 def _need_across_a_tip(phi0, phi_dot0, a_h, a_v0, a_v_rate, best, x_stop=1.0):
@@ -1340,11 +1344,8 @@ def _need_across_a_tip(phi0, phi_dot0, a_h, a_v0, a_v_rate, best, x_stop=1.0):
     x_tip = brentq(past_tip, 0.0, 1.0, xtol=1e-15)
     side = -1e-12 if past_tip(0.0) < 0.0 else 1e-12
     at_tip = E._need_at(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, x_tip + side, 0, np.zeros(8), ws)
-    summ = np.zeros((1, E.N_BLOCK_SUMMARY))
-    summ[0, E.B_MU_REQ] = best
-    E._need_inside(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, G, q, n_q, x_stop, summ, np.zeros(8),
-                   np.zeros(E.N_GUARD_SLOTS), np.zeros(1, dtype=np.bool_), ws)
-    return summ[0, E.B_MU_REQ], q[0], x_tip, at_tip
+    booked = _booked_need(P, ends, anchor, nstate, tstate, t, y, hs, F, loc, q, n_q, x_stop, best, ws)
+    return booked, q[0], x_tip, at_tip
 
 
 @pytest.mark.parametrize("leaving", [True, False])
