@@ -992,13 +992,14 @@ def test_the_state_after_each_event_is_the_mode_the_run_goes_on_in():
     assert rows > 6000
 
 
-@pytest.mark.parametrize("seed", [1, 4])
+@pytest.mark.parametrize("seed", [1, 4, 7, 9])
 def test_no_interface_that_can_slip_reports_needing_more_than_its_mu_s(seed):
     """An interface that can slip slips once its forces, or an impact's impulse, would need more
     than μs: the friction it needed while it stuck (``required_friction``, impacts included) is
-    at most μs, to the 1e-6 the report's check allows, on the 487 slippable interfaces of 300
+    at most μs, to the 1e-6 the report's check allows, on the 975 slippable interfaces of 600
     random stacks. (The report fails an interface whose need exceeds μs as a contradiction of the
-    model: it never happens here.)"""
+    model: it never happens here.) Seeds 7 and 9 each had a micro-impact stuck within the impulse
+    solve's slack booked at its solved ratio, 0.2 % and 0.07 % above μs, until 2026-12-07."""
     checked = 0
     for stack, motion in _random_stacks(seed, 150):
         r = simulate_stack(stack, motion, options={"save_dt": 0.005, "max_events": 5000})
@@ -1006,7 +1007,7 @@ def test_no_interface_that_can_slip_reports_needing_more_than_its_mu_s(seed):
             if interface.friction is not None:
                 checked += 1
                 assert summary["required_friction"] <= interface.friction.mu_s * (1 + 1e-6), (stack, motion)
-    assert checked == {1: 246, 4: 241}[seed]
+    assert checked == {1: 246, 4: 241, 7: 242, 9: 246}[seed]
 
 
 def test_the_library_measures_a_sinking_corner_as_the_independent_geometry_does():
@@ -2203,7 +2204,7 @@ def test_an_impulse_is_split_along_the_face_of_the_block_it_crosses_onto(slippin
     summ = np.zeros((2, engine.N_BLOCK_SUMMARY))
     engine._impact_needs(P, ends, anchor, np.array([ROCK, FLAT], dtype=np.int64),
                          np.array([0, 1 if slipping else 0], dtype=np.int64), z, np.zeros_like(z),
-                         np.array([v1, v2]), summ)
+                         np.array([v1, v2]), summ, 0.0)
     impulse = -m2 * v2
     along = impulse @ [math.cos(tilt), -math.sin(tilt)]
     across = impulse @ [math.sin(tilt), math.cos(tilt)]
