@@ -173,7 +173,7 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
     return overturned
 
 
-_STACK_SOLVER_FAILURES = ("inconsistent", "step_failed", "max_events", "lost_contact")
+_STACK_SOLVER_FAILURES = ("inconsistent", "step_failed", "max_events", "lost_contact", "friction_gained")
 
 
 def _stack_fails(task: SpectrumTask, motion: Any, counter: list[int], options: Options) -> bool:
@@ -368,7 +368,7 @@ def overturning_spectrum(
         outcome found (``edge_lower``/``edge_upper`` brackets, ``edge_to_failure`` True where
         the block fails above it), ``scan_fails`` (the coarse scan), ``runs``,
         ``failed_runs`` (solver failures: max_events, singular, step_failed; for stacks also
-        inconsistent and lost_contact; counted as safe), ``undetermined_runs`` (still
+        inconsistent, lost_contact and friction_gained; counted as safe), ``undetermined_runs`` (still
         moving at the free-motion cap, counted as safe), ``slid_off_runs`` (stacks only) and
         ``pedestal_tips_runs`` (a pedestal of given width and height would tip, which the
         two-body model does not follow: counted as failing under every criterion) and
