@@ -837,6 +837,11 @@ def test_a_run_in_which_friction_gives_energy_is_not_a_result():
     assert r.status == "friction_gained" and friction_gain_time(r) == pytest.approx(held, abs=1e-12)
     assert r.verdict.startswith("undetermined: from t = 2.271 s friction fed the motion"), r.verdict
     assert r.summary()["verdict"] == r.verdict
+    assert any(w.startswith("From t = 2.271 s friction gave the stack energy") for w in build_stack_content(r).warnings)
+    from rocking.report.stack import stack_verdict, stack_verdict_class
+
+    assert stack_verdict(r).startswith("Undetermined: from t = 2.271 s friction fed the motion")
+    assert stack_verdict_class(r) == "stopped"
     assert np.min(np.diff(r.friction_loss)) < -1.0  # (J: what the check saw)
     assert "friction_gained" in _STACK_SOLVER_FAILURES
 
@@ -1863,6 +1868,11 @@ def test_a_contact_held_in_tension_holds_every_contact_that_pulls():
     assert held[0] == pytest.approx(5.0992412, abs=1e-7) and held[1] == held[0]
     assert held[2] == pytest.approx(7.1653604, abs=1e-7)
     assert r.blocks[0]["overturn_time"] == pytest.approx(8.428, abs=1e-3)  # "block 1"
+    # the report claims nothing either, though block 1 fell in the run: "stopped", not "fails"
+    from rocking.report.stack import stack_verdict, stack_verdict_class
+
+    assert stack_verdict(r).startswith("Undetermined: from t = 5.099 s friction fed the motion")
+    assert stack_verdict_class(r) == "stopped"
     warnings = build_stack_content(r).warnings
     for k, when in ((1, "5.099"), (2, "5.099"), (3, "7.165")):
         assert any(w.startswith(f"From t = {when} s the contact under block {k} carried a small tension")

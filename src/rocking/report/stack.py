@@ -40,6 +40,9 @@ __all__ = ["block_label", "build_stack_content", "stack_checks", "stack_verdict"
 
 #: A slippable interface reaches its μs, then slips: its need may pass μs by the event's tolerance.
 _FRICTION_TOLERANCE = 1e-6
+#: Statuses of a run that broke the engine's own invariants (a corner sunk, friction that gave
+#: energy): its verdict is undetermined whatever fell in it.
+_NOT_A_RESULT = ("lost_contact", "friction_gained")
 
 
 # ------------------------------------------------------------------------------------ naming
@@ -102,6 +105,9 @@ def stack_verdict(response: Any) -> str:
     'Block 2 (statue) overturns at t = 2.12 s; the run ends there.'
     """
     stack, end = response.stack, float(response.end_time)
+    if response.status in _NOT_A_RESULT:
+        # the run broke its own invariants: whatever fell in it, nothing is claimed
+        return f"Undetermined: {response.verdict.removeprefix('undetermined: ')}."
     fallen = _fallen(response)
     if fallen:
         t, k = fallen[0]
@@ -126,6 +132,8 @@ def stack_verdict(response: Any) -> str:
 def stack_verdict_class(response: Any, report_checks: list[Check] | None = None) -> str:
     """"fails" (a block overturns), "stopped" (undetermined, or standing while a check fails) or
     "safe"."""
+    if response.status in _NOT_A_RESULT:
+        return "stopped"
     if _fallen(response):
         return "fails"
     if _undetermined(response) or any(c.result == FAIL for c in report_checks or []):
@@ -229,6 +237,12 @@ def _warnings(response: Any, found: list[Check]) -> list[str]:
     if response.status == "still_moving":
         out.append(f"The run ended at t = {response.end_time:.2f} s while the stack still moved: the verdict is "
                    "undetermined (raise simulation.free_time_limit or simulation.duration).")
+    elif response.status == "friction_gained":
+        from ..stack.simulate import friction_gain_time
+
+        out.append(f"From t = {friction_gain_time(response):.3f} s friction gave the stack energy, which Coulomb "
+                   "friction cannot: a contact held in tension slipped (Painlevé's paradox), so the run is not a "
+                   "result (docs/theory/stack.md §5).")
     elif response.status not in ("completed", "overturned", "slid_past_edge"):
         out.append(f"The simulation stopped early at t = {response.end_time:.2f} s (status {response.status}).")
     for k, b in enumerate(response.blocks):
