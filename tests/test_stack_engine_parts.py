@@ -691,7 +691,7 @@ def test_an_impact_stuck_within_the_solves_slack_needs_its_mu_s_at_most():
     block (30 kg, μs = 0.5) brought to rest from V⁻ = −(0.5 + δ, 1) m/s takes J = m(0.5 + δ, 1):
     with the slack just above m·δ its need is μs, just below it 0.5 + δ; a face that cannot slip
     has no μs to stop at; a zero slack books the ratio. Until 2026-12-07 the ratio was booked, and
-    micro-impacts in 3 of 900 random stacks read up to 0.2 % above μs: the report failed those
+    micro-impacts in 3 of 1500 random stacks read up to 0.2 % above μs: the report failed those
     faces as needing more than μs without slipping."""
     delta, m = 1e-4, 30.0
     for friction, tol, want in ((Friction(static=0.5, kinetic=0.4), 1.01 * m * delta, 0.5),

@@ -1758,7 +1758,7 @@ def _impact_needs(P, ends, anchor, nstate, tstate, z, zd, xd_before, summ, tol_i
                 # Stuck at the edge of its cone, to the solve's accuracy: the exact impulse needs μs
                 # at most. Booked as solved, a micro-impact's ratio passed μs by up to 0.2 % (its
                 # slack over a normal impulse 1e-6 of the momentum) and the report failed the face
-                # as "more than its μs, without slipping" (3 of 900 random stacks, 2026-12-07).
+                # as "more than its μs, without slipping" (3 of 1500 random stacks, 2026-12-07).
                 ratio = min(ratio, P[j, P_MU_S])
             if ratio > summ[j, B_MU_REQ]:
                 summ[j, B_MU_REQ] = ratio
