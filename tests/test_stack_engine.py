@@ -1750,6 +1750,35 @@ def test_an_impact_whose_restitution_has_no_consistent_mode_restitutes_less():
     assert any("t = 0.289 s an impact under block 1 did not restitute" in w for w in warnings), warnings
 
 
+def test_an_impact_whose_restitution_holds_only_below_one_half_restitutes_that_little():
+    """Seed 5's 52nd random stack: a heavy wide block (634 kg, restitution 0.61 on its 30 kg
+    plinth) lands at t = 0.44683 s with a slender block (166 kg) that never slips rocking on it.
+    Half of the restitution couple leaves no consistent mode, so the bisection of
+    ``_impact_with_less_restitution`` must start from the plastic impact (s = 0), which holds, and
+    find the boundary below one half: block 2's summary notes the cut, and the impact leaves its
+    interface rocking, slipping forward. (Tried at s = 0.5 first, the bisection gave up at once:
+    the impact landed the block flat, holding its contacts, and the run went another way: 111
+    events by 0.6 s where it makes 298; forty-second mutation round, cdb9e659.)"""
+    stack = Stack(
+        blocks=(Block(width=0.3717372154468587, height=0.5648150257040017, mass=29.840667958615043),
+                Block(width=0.8476512157656304, height=0.9585679105675731, mass=634.4206021148693,
+                      offset=-0.06259391581475385),
+                Block(width=0.2704834939373004, height=0.8366997474788826, mass=166.36907398096272,
+                      offset=-0.04164718324180808)),
+        interfaces=(Interface(friction=Friction(static=0.3186348385526252, kinetic=0.293029640630052)),
+                    Interface(friction=Friction(static=0.6180933283650607, kinetic=0.6062589114645254),
+                              restitution=0.6147100149876976),
+                    Interface(restitution=0.7716083435881677)))
+    motion = rocking.Harmonic(amplitude=1.6830355432253576, frequency=2.1219191225793486, cycles=4)
+    r = simulate_stack(stack, motion, duration=0.6, options={"save_dt": 0.005})
+    cut = [b["restitution_reduced_time"] for b in r.blocks]
+    assert cut[0] is None and cut[2] is None and cut[1] == pytest.approx(0.44682724, abs=1e-7)
+    at = r.events[(np.abs(r.events[:, 0] - cut[1]) < 1e-9) & (r.events[:, 1] == 1) & (r.events[:, 2] == -1)]
+    assert len(at) == 1 and (at[0, 3], at[0, 4]) == (1, 1) and at[0, 5] > 0.0  # rocking, slipping; loses energy
+    assert _ledger_error(stack, r) <= 1e-8
+    assert _deepest_sink(r) > -1e-9
+
+
 def test_an_impact_that_would_make_a_corner_pull_holds_it():
     """A heavy statue (300 kg) lands on a small plinth while a light vase that never slips rocks
     on it: with the statue's interface slipping, the vase's corner would have to pull, and
