@@ -1157,7 +1157,8 @@ def test_the_sink_check_sees_a_block_tilted_far_on_the_one_below(theta):
 def test_a_run_whose_blocks_overlap_gives_no_verdict(monkeypatch):
     """Should the engine lose a contact again (a corner going on through the face below, as before
     the fix of 2026-11-24), the run is not believed: status "lost_contact", an undetermined
-    verdict, and the studies count it as not safe (spectrum: a solver failure)."""
+    verdict, and the spectra count it as a solver failure (``failed_runs``, warned; counted as
+    safe, as every solver failure is there)."""
     from rocking.stack import simulate as sim
 
     stack = _pedestal_and_statue(Friction(static=0.3))
