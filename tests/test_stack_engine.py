@@ -18,7 +18,7 @@ from rocking.analyses.paper import case_named, paper_motion, variant_setup
 from rocking.contact.friction import Friction
 from rocking.excitation.base import KIND_HARMONIC, KIND_RAMP, KIND_RECTANGLE, ZERO_SIGNAL, AbstractMotion, Signal
 from rocking.excitation.record import GroundMotion
-from rocking.report.stack import build_stack_content
+from rocking.report.stack import build_stack_content, stack_verdict, stack_verdict_class
 from rocking.stack import Block, Interface, Stack, engine, simulate_stack
 
 G = 9.80665
@@ -838,8 +838,6 @@ def test_a_run_in_which_friction_gives_energy_is_not_a_result():
     assert r.verdict.startswith("undetermined: from t = 2.271 s friction fed the motion"), r.verdict
     assert r.summary()["verdict"] == r.verdict
     assert any(w.startswith("From t = 2.271 s friction gave the stack energy") for w in build_stack_content(r).warnings)
-    from rocking.report.stack import stack_verdict, stack_verdict_class
-
     assert stack_verdict(r).startswith("Undetermined: from t = 2.271 s friction fed the motion")
     assert stack_verdict_class(r) == "stopped"
     assert np.min(np.diff(r.friction_loss)) < -1.0  # (J: what the check saw)
@@ -1899,8 +1897,6 @@ def test_a_contact_held_in_tension_holds_every_contact_that_pulls():
     assert held[2] == pytest.approx(7.1653604, abs=1e-7)
     assert r.blocks[0]["overturn_time"] == pytest.approx(8.428, abs=1e-3)  # "block 1"
     # the report claims nothing either, though block 1 fell in the run: "stopped", not "fails"
-    from rocking.report.stack import stack_verdict, stack_verdict_class
-
     assert stack_verdict(r).startswith("Undetermined: from t = 5.099 s friction fed the motion")
     assert stack_verdict_class(r) == "stopped"
     warnings = build_stack_content(r).warnings
