@@ -489,6 +489,36 @@ def test_spectrum_of_a_one_block_stack_is_the_statue_spectrum():
     assert ours.attrs["engine"] == "stack" and ours.attrs["p"] == pytest.approx(ref.attrs["p"], rel=1e-12)
     np.testing.assert_allclose(ours.amplitude_ratio.values, ref.amplitude_ratio.values, rtol=2e-3)
     assert int(ours.slid_off_runs.sum()) == 0
+    # runs still rocking at the cap with too little energy to fall: settled alike (3 and 6 of them
+    # at β = 1 and 3); undetermined, counted as failing by default, they would lower the boundary
+    np.testing.assert_array_equal(ours.settling_runs.values, ref.settling_runs.values)
+    assert int(ours.settling_runs.sum()) > 0 and int(ours.undetermined_runs.sum()) == 0
+
+
+def test_a_one_block_stack_left_rocking_is_settled_only_inside_its_barrier():
+    """A one-block stack cut while it rocks gently is settled (E − E₀ below m·g·(R − H/2), inside
+    α); one cut as it falls, past α, is not, although its energy is below the barrier (E − E₀ < 0:
+    past α its weight works for it); a two-block stack never is (no bound is known for it)."""
+    from rocking.analyses.spectra import _one_block_below_overturning_energy, spectrum_motion
+
+    block = Stack(blocks=(Block(width=0.3, height=1.5, mass=1.0),), interfaces=(Interface(),))
+    alpha, barrier = math.atan(0.2), G * (math.hypot(0.15, 0.75) - 0.75)
+    gentle = simulate_stack(block, rk.SinePulse(amplitude=4.0, frequency=1.5), duration=0.5, options=OPTS)
+    assert gentle.status == "still_moving" and 1e-3 < abs(gentle.rotation[-1, 0]) < alpha
+    assert 0 < gentle.energy[-1] - gentle.initial_energy < barrier
+    assert _one_block_below_overturning_energy(gentle, G)
+    statue = rk.Statue(width=0.3, height=1.5, mass=1.0)
+    pulse = spectrum_motion("sine", 1.479, 1.0, g_tan_alpha=G * 0.2, p=statue.frequency_parameter(G))
+    falling = simulate_stack(block, pulse, duration=pulse.duration, options=OPTS)
+    assert falling.status == "still_moving" and abs(falling.rotation[-1, 0]) > 2 * alpha
+    assert falling.energy[-1] - falling.initial_energy < 0
+    assert not _one_block_below_overturning_energy(falling, G)
+    assert simulate_stack(block, pulse, options=OPTS).status == "overturned"  # (it does fall)
+    two = Stack(blocks=(Block(width=1.0, height=0.3, mass=50.0), Block(width=0.3, height=1.5, mass=1.0)),
+                interfaces=(Interface(), Interface()))
+    rocking_on_top = simulate_stack(two, rk.SinePulse(amplitude=4.0, frequency=1.5), duration=0.5, options=OPTS)
+    assert rocking_on_top.status == "still_moving"
+    assert not _one_block_below_overturning_energy(rocking_on_top, G)
 
 
 # ------------------------------------------------------------------------------ the command

@@ -317,6 +317,63 @@ def test_spectrum_counts_runs_still_moving_at_the_cap():
     assert int(cut.undetermined_runs.sum()) <= int(cut.runs.sum())
 
 
+@pytest.mark.parametrize("criterion", ["overturn", "no_impact", "exceed"])
+def test_a_spectrum_never_shows_safe_what_a_longer_run_shows_failing(criterion):
+    """Cut every run at the end of its pulse (``free_time = 0``): a block that rocks is then still
+    moving. If its energy is below the overturning barrier it cannot fall (``settling_runs``,
+    safe); otherwise its outcome is unknown. Counted as failing (the default), the cut spectrum
+    fails wherever the full one does, so its boundary is never above the true one; counted as safe
+    it fails only where the full one does. Until 2026-12-07 the spectrum counted such runs as safe
+    only. A settling run that fell later, or an unknown one counted safe, breaks the first; an
+    unknown one counted failing that the full run shows safe is what the second rule avoids."""
+    from rocking.analyses.spectra import overturning_spectrum
+
+    system = rk.System(statue=rk.Statue(width=0.3, height=1.5, mass=1.0))
+    kw = dict(frequency_ratios=[1.0, 3.0], amplitude_range=(1.2, 12.0), n_scan=12, rtol=1e-2, criterion=criterion,
+              options=OPTS, workers=1)
+    full = overturning_spectrum(system, "sine", free_time=400.0, **kw)
+    strict = overturning_spectrum(system, "sine", free_time=0.0, **kw)
+    lenient = overturning_spectrum(system, "sine", free_time=0.0, undetermined="safe", **kw)
+    assert int(full.undetermined_runs.sum()) == 0, "the full runs all reach an outcome"
+    assert strict.attrs["undetermined"] == "fail" and lenient.attrs["undetermined"] == "safe"
+    f, s, ln = (ds.scan_fails.values for ds in (full, strict, lenient))
+    assert np.all(s >= f) and np.all(ln <= f)
+    assert int(strict.undetermined_runs.sum()) > 0 and int(strict.settling_runs.sum()) > 0
+    assert np.any(s != ln), "some scanned runs are unknown at the cut, and the two rules count them apart"
+    b_full, b_strict = full.amplitude_ratio_upper.values, strict.amplitude_ratio_upper.values
+    assert np.all(b_strict <= b_full * (1 + 1e-12))
+
+
+def test_a_block_rocking_with_less_energy_than_its_barrier_is_settled_and_one_above_is_not():
+    """``_below_overturning_energy`` against the barrier computed here: m·g·R·(1 − cos α) of a
+    0.3 × 1.5 m, 2 kg statue, with the ledger's energy W − D_impact − D_friction + balance, and
+    only for a statue inside α where the run ended (past it, V falls and the energy bounds
+    nothing: statues past α at the cut with E < 0 fell later, seen in the test above; one that
+    passed α during the pulse and came back can still settle)."""
+    from rocking.analyses.spectra import _below_overturning_energy
+    from rocking.solver import compiled as C
+
+    statue = rk.Statue(width=0.3, height=1.5, mass=2.0)
+    alpha = math.atan(0.2)
+    barrier = 2.0 * 9.5 * math.hypot(0.15, 0.75) * (1.0 - math.cos(alpha))
+    raw = np.full(C.N_SUMMARY, np.nan)
+    for w, d_imp, d_fr, bal, theta, below in [
+        (barrier + 1.0, 1.0, 0.0, 0.0, 0.1, False), (barrier + 1.0, 0.5, 0.5, 1e-9, 0.1, False),
+        (barrier + 1.0, 0.6, 0.5, 0.0, 0.1, True), (barrier, 0.0, 0.0, -1e-9, 0.1, True),
+        (barrier + 1.0, 1.0, 1e-9, 0.0, 0.1, True), (barrier, 1e-9, 0.0, 2e-9, 0.1, False),
+        (0.0, 1.0, 0.0, 0.0, alpha * (1 - 1e-12), True), (0.0, 1.0, 0.0, 0.0, alpha, False),
+        (0.0, 1.0, 0.0, 0.0, -alpha * (1 - 1e-12), True), (0.0, 1.0, 0.0, 0.0, -alpha, False),
+        (-1.0, 0.0, 0.0, 0.0, -1.3, False),
+    ]:
+        raw[[C.S_W_INPUT, C.S_D_IMPACT, C.S_D_FRICTION, C.S_BALANCE, C.S_THETA_END]] = w, d_imp, d_fr, bal, theta
+        assert _below_overturning_energy(rk.System(statue=statue), raw, 9.5) is below, (w, d_imp, d_fr, bal, theta)
+    # the slot holds θ where the run ended: a statue cut while rocking, its last sample at the cut
+    cut = rk.simulate(rk.System(statue=statue), rk.SinePulse(amplitude=4.0, frequency=1.5), options=OPTS,
+                      duration=0.5)
+    assert cut.summary()["still_moving"] and abs(cut.theta[-1]) > 1e-3 and cut.t[-1] == pytest.approx(0.5, abs=1e-12)
+    assert cut.raw_summary[C.S_THETA_END] == pytest.approx(cut.theta[-1], rel=1e-12)  # (dense output: 1 ulp)
+
+
 def _falling_floor(ah, t_drop=1.0, ramp=0.01, depth=1.5, end=2.0):
     """A record: a_h = ah throughout, and a_v ramped from 0 at t_drop down to −depth·g over ramp s,
     then held: the floor falls faster than gravity from t_drop + ramp/depth on."""

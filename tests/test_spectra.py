@@ -222,20 +222,37 @@ def test_a_gap_in_the_boundary_says_nothing_overturned_in_the_scanned_range(with
     assert ax.get_legend().get_bbox_to_anchor().y0 > ax.get_window_extent().y1 - 1  # above the axes
 
 
-def test_runs_the_solver_stopped_are_reported_as_counted_safe(with_islands):
-    """A run the solver stops before a verdict counts as safe in the scan, which can only raise the
-    boundary: the report must say so (it said nothing until 2026-11-24)."""
+def test_runs_the_solver_stopped_are_reported_as_they_were_counted(with_islands):
+    """A run the solver stops before a verdict counts as failing by default, which can only lower
+    the boundary; counted as safe (``undetermined="safe"``, or a dataset made before the option),
+    it can only raise it. The report must say which (it said nothing until 2026-11-24)."""
     from rocking.analyses.spectra import spectrum_report
 
     _, ds = with_islands
-    assert int(ds.failed_runs.sum()) == 0
+    runs = int(ds.runs.sum())
+    assert int(ds.failed_runs.sum()) == 0 and int(ds.undetermined_runs.sum()) == 0
     assert "stopped by the solver" not in spectrum_report(ds)
     stopped = ds.copy(deep=True)
     stopped["failed_runs"].values[0, 0] = 2
-    report = spectrum_report(stopped)
-    runs = int(ds.runs.sum())
-    assert (f"**2 of {runs} runs were stopped by the solver before a verdict (too many events, or no consistent "
-            "contact mode): counted as safe, so a boundary may lie lower than shown.**") in report
+    stopped["undetermined_runs"].values[:] = 0
+    stopped["undetermined_runs"].values[0, 0] = 3
+    settled = int(ds.settling_runs.sum())
+    assert settled > 0  # (71 with free_time 25: the islands' runs rock on for up to ~50/p)
+    assert (f"{settled} of {runs} runs were still rocking at the end of their free motion with less energy than the "
+            "block needs to overturn (on the still floor it can only lose energy): safe, decided.") in spectrum_report(ds)
+    said = {"fail": "counted as failing, so a boundary may lie higher than shown",
+            "safe": "counted as safe, so a boundary may lie lower than shown"}
+    for rule in ("fail", "safe", None):
+        if rule is None:
+            del stopped.attrs["undetermined"]
+        else:
+            stopped.attrs["undetermined"] = rule
+        report = spectrum_report(stopped)
+        text = said[rule or "safe"]
+        assert (f"**2 of {runs} runs were stopped by the solver before a verdict (too many events, or no "
+                f"consistent contact mode): {text}.**") in report
+        assert (f"**3 of {runs} runs were still moving at the end of their free motion: undetermined, "
+                f"{text}.** Raise spectrum.free_time to decide them.") in report
 
 
 def test_bad_inputs_are_refused():
@@ -244,6 +261,8 @@ def test_bad_inputs_are_refused():
         overturning_spectrum(system, "square", [1.0], workers=1)
     with pytest.raises(ValueError, match="criterion"):
         overturning_spectrum(system, "sine", [1.0], criterion="maybe", workers=1)
+    with pytest.raises(ValueError, match="undetermined must be one of fail, safe, got 'unsafe'"):
+        overturning_spectrum(system, "sine", [1.0], undetermined="unsafe", workers=1)
     with pytest.raises(ValueError, match="amplitude_range"):
         overturning_spectrum(system, "sine", [1.0], amplitude_range=(3.0, 2.0), workers=1)
 
@@ -399,11 +418,24 @@ def test_spectrum_command(tmp_path, capsys):
         api = overturning_spectrum(rk.System(statue=rk.Statue(width=0.4, height=2.0, mass=1.0)), ["sine", "cosine"],
                                    [1.0, 2.0, 3.0], amplitude_range=(1.01, 10.0), n_scan=20, options=OPTS, workers=1)
         np.testing.assert_array_equal(ds.amplitude_ratio.values, api.amplitude_ratio.values)
-    # a run the solver stops (here after its second event) counts as safe, and the command says so
-    cfg.write_text(SPECTRUM_TOML.replace("gravity = 9.81", "gravity = 9.81\nmax_events = 2"))
-    assert cli_main.main(["spectrum", str(cfg), "--out", str(tmp_path / "stopped"), "--workers", "1"]) == 0
-    said = capsys.readouterr().out
-    assert re.search(r"warning: \d+ of \d+ runs were stopped by the solver before a verdict: counted as safe", said)
+    # a run the solver stops (here after its second event) counts as failing, and the command says
+    # so; with undetermined = "safe", as safe
+    stopped = SPECTRUM_TOML.replace("gravity = 9.81", "gravity = 9.81\nmax_events = 2")
+    boundary = {}
+    for rule in ("fail", "safe"):
+        cfg.write_text(stopped.replace("[spectrum]", f'[spectrum]\nundetermined = "{rule}"'))
+        assert cli_main.main(["spectrum", str(cfg), "--out", str(tmp_path / rule), "--workers", "1"]) == 0
+        said = capsys.readouterr().out
+        counted = {"fail": "failing, so a boundary may lie higher", "safe": "safe, so a boundary may lie lower"}[rule]
+        assert re.search(r"warning: \d+ of \d+ runs were stopped by the solver before a verdict: counted as "
+                         + counted, said)
+        with xr.open_dataset(tmp_path / rule / "spectrum.nc", engine="h5netcdf") as got:
+            assert got.attrs["undetermined"] == rule and int(got.failed_runs.sum()) > 0
+            boundary[rule] = np.nan_to_num(got.amplitude_ratio_upper.values, nan=np.inf)
+    assert np.all(boundary["fail"] <= boundary["safe"]) and np.any(boundary["fail"] < boundary["safe"])
+    cfg.write_text(SPECTRUM_TOML.replace("[spectrum]", '[spectrum]\nundetermined = "maybe"'))
+    assert cli_main.main(["spectrum", str(cfg), "--out", str(out)]) == 2
+    assert "spectrum.undetermined" in capsys.readouterr().err
     cfg.write_text(SPECTRUM_TOML.replace('"cosine"]', '"square"]'))
     assert cli_main.main(["spectrum", str(cfg), "--out", str(out)]) == 2
     assert "spectrum.motions" in capsys.readouterr().err

@@ -19,11 +19,21 @@ The motions, for an amplitude a_p = A·g·tan α and a circular frequency ω_p =
 * ``"harmonic"``: a_p·sin(ω_p t) (``form="sin"``) for ``cycles`` cycles.
 
 Every run lasts the motion, then goes on with the floor still until the block is at rest or
-falls, for at most ``free_time``/p (25 by default: enough for a block that is still rocking
-after the pulse to fall or settle). A run still moving at that cap is undetermined: it counts
-as safe in the scan, and is counted in ``undetermined_runs``. So does a run the solver stops
-before a verdict (too many events, a singular or inconsistent contact mode), counted in
-``failed_runs``; the report and the command warn of both (a boundary may lie lower).
+falls, for at most ``free_time``/p (25 by default). A statue still rocking at that cap with less
+energy than it needs to overturn (T + V < m₂·g·R·(1 − cos α) on the still floor, where the energy
+can only fall) cannot fall: it counts as safe, in ``settling_runs`` (a slender block rocking down
+from near its overturn takes ~50/p and ~220 impacts to come to rest under Housner's
+restitution). The same holds for a one-block stack; a taller stack has no such bound here. Any
+other run still moving at the cap is undetermined, counted in
+``undetermined_runs``; so is a run the solver stops before a verdict (too many events, a singular
+or inconsistent contact mode, for stacks a lost contact or friction that gave energy), counted in
+``failed_runs``. By default (``undetermined="fail"``) such a run counts as failing, as the design
+and fragility studies count it: the boundary is then the smallest amplitude at which the block is
+not shown to survive, never above the true one on the scanned grid. With ``undetermined="safe"``
+it counts as safe, as before 2026-12-07: the boundary of the falls seen, which may lie above the
+true one. Where what the run did settles the criterion anyway (an impact before the solver
+stopped, under ``"no_impact"``; α passed, under ``"exceed"``), the run counts as it did. The
+report and the command warn of both counts and say which way the boundary may move.
 
     >>> import rocking as rk
     >>> from rocking.analyses.spectra import overturning_spectrum
@@ -63,12 +73,17 @@ __all__ = [
     "plot_spectra",
     "plot_spectra_overlay",
     "spectrum_report",
+    "counted_as",
 ]
 
 SHAPES = ("sine", "cosine", "ricker", "harmonic")
 #: "overturn": any overturning counts; "no_impact": only overturning before the first impact
 #: (mode 1 of Zhang & Makris); "exceed": |θ| reaching α (a quick, monotone-ish proxy).
 CRITERIA = ("overturn", "no_impact", "exceed")
+#: How a run without an outcome (still moving at the cap, or stopped by the solver) counts:
+#: "fail" (conservative, the default), or "safe" (the falls seen only).
+UNDETERMINED = ("fail", "safe")
+_COUNTED = {"fail": "failing", "safe": "safe"}
 MAX_ISLANDS = 16
 MAX_EDGES = 2 * MAX_ISLANDS + 1
 
@@ -116,6 +131,13 @@ class SpectrumTask:
     cycles: float
     free_time: float
     options: Options
+    undetermined: str = "fail"
+
+
+def _undecided(task: SpectrumTask, settled: bool) -> bool:
+    """How a run without an outcome counts: failing under ``undetermined="fail"``, unless what it
+    did before it stopped already settles the criterion (``settled``: it cannot fail any more)."""
+    return task.undetermined == "fail" and not settled
 
 
 def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: float, counter: list[int],
@@ -153,12 +175,17 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
         # held_impact_time): what follows is not a result, so, as a lift-off, not shown to stand
         counter[6] += 1
         return True
+    impacted = int(raw[C.S_IMPACTS]) > 0
     if status in (C.STATUS_SINGULAR, C.STATUS_STEP_FAILED, C.STATUS_MAX_EVENTS):
         if task.criterion == "exceed" and not math.isnan(raw[C.S_EXCEED_TIME]):
             return True  # it had passed α before the solver stopped: that much is known
         counter[1] += 1
+        return _undecided(task, task.criterion == "no_impact" and impacted)
+    moving = status == C.STATUS_STILL_MOVING
+    if moving and _below_overturning_energy(task.system, raw, options.gravity):
+        counter[7] += 1  # it rocks on, but cannot fall (nor reach α): decided, safe
         return False
-    if status == C.STATUS_STILL_MOVING:
+    if moving:
         counter[2] += 1
     if status != C.STATUS_OVERTURNED and not math.isnan(raw[C.S_UPLIFT]):
         # the pedestal would tip (derivation §3.5), which the two-body model does not follow:
@@ -166,11 +193,44 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
         counter[4] += 1
         return True
     if task.criterion == "exceed":
-        return not math.isnan(raw[C.S_EXCEED_TIME])
+        return not math.isnan(raw[C.S_EXCEED_TIME]) or (moving and _undecided(task, False))
+    if moving:
+        return _undecided(task, task.criterion == "no_impact" and impacted)
     overturned = status == C.STATUS_OVERTURNED
     if task.criterion == "no_impact":
-        return overturned and int(raw[C.S_IMPACTS]) == 0
+        return overturned and not impacted
     return overturned
+
+
+def _below_overturning_energy(system: System, raw: np.ndarray, gravity: float) -> bool:
+    """Can a run still moving at its cap no longer overturn? Its floor is still by then (the cap
+    is free motion after the pulse), so the energy T + V relative to the floor (Eqs. 16–17; V = 0
+    with the statue upright) can only fall: friction and every impact dissipate. A statue inside
+    its barrier (|θ| < α where the run ended) with less energy than V(α) = m₂·g·R·(1 − cos α)
+    can never reach ±α; past α, V falls, and no energy bounds the fall. The run started from rest
+    (E = 0), so by the ledger E ≤ W − D_impact − D_friction + its balance error (J)."""
+    statue = system.statue
+    alpha = statue.slenderness
+    barrier = statue.mass * gravity * statue.semi_diagonal * (1.0 - math.cos(alpha))
+    energy = raw[C.S_W_INPUT] - raw[C.S_D_IMPACT] - raw[C.S_D_FRICTION] + raw[C.S_BALANCE]
+    return bool(abs(raw[C.S_THETA_END]) < alpha and energy < barrier)
+
+
+def _one_block_below_overturning_energy(response: Any, gravity: float) -> bool:
+    """:func:`_below_overturning_energy` for a one-block stack: inside α (its rotation on the
+    floor where the run ended) with E − E₀ + the ledger's error below m·g·(R − H/2), the rise of
+    its centre from flat to balanced on a corner (J). A block turned to ±α has a corner R below its
+    centre whether it touches the floor or flies, so no pose past α has less potential energy.
+    (For taller stacks the least energy of a fall is not so easily bounded: they stay
+    undetermined.)"""
+    stack = response.stack
+    if stack.n != 1:
+        return False
+    block = stack.blocks[0]
+    alpha = math.atan2(block.width, block.height)
+    barrier = block.mass * gravity * (0.5 * math.hypot(block.width, block.height) - 0.5 * block.height)
+    energy = float(response.energy[-1] - response.initial_energy) + float(np.max(np.abs(response.balance_error())))
+    return bool(abs(response.rotation[-1, 0]) < alpha and energy < barrier)
 
 
 _STACK_SOLVER_FAILURES = ("inconsistent", "step_failed", "max_events", "lost_contact", "friction_gained")
@@ -183,20 +243,32 @@ def _stack_fails(task: SpectrumTask, motion: Any, counter: list[int], options: O
     from ..stack.simulate import simulate_stack
     from .batch import stack_alpha
 
-    summary = simulate_stack(task.system, motion, options=options).summary()
+    response = simulate_stack(task.system, motion, options=options)
+    summary = response.summary()
     counter[0] += 1
     status = summary["status"]
+    # an impact before the run stopped settles "no_impact" (no mode-1 fall any more), unless the
+    # run went wrong before it ended (a lost contact, friction that gave energy): its late
+    # impacts are not known to have happened
+    impacted = summary["impacts"] > 0 and status not in ("lost_contact", "friction_gained")
     if status in _STACK_SOLVER_FAILURES:
         counter[1] += 1
+        return _undecided(task, task.criterion == "no_impact" and impacted)
+    moving = status == "still_moving"
+    if moving and _one_block_below_overturning_energy(response, options.gravity):
+        counter[7] += 1
         return False
-    if status == "still_moving":
+    if moving:
         counter[2] += 1
     if status == "slid_past_edge":
         counter[3] += 1
         return True
     overturned = status == "overturned"
     if task.criterion == "exceed":
-        return overturned or summary["peak_rotation"] >= stack_alpha(task.system)
+        return (overturned or summary["peak_rotation"] >= stack_alpha(task.system)
+                or (moving and _undecided(task, False)))
+    if moving:
+        return _undecided(task, task.criterion == "no_impact" and impacted)
     if task.criterion == "no_impact":
         return overturned and summary["impacts"] == 0
     return overturned
@@ -249,9 +321,10 @@ def _spectrum_chunk(task: SpectrumTask) -> dict[str, np.ndarray]:
         "pedestal_tips_runs": np.zeros(nf, dtype=np.int64),
         "lifted_off_runs": np.zeros(nf, dtype=np.int64),
         "impact_beyond_friction_runs": np.zeros(nf, dtype=np.int64),
+        "settling_runs": np.zeros(nf, dtype=np.int64),
     }
     for k, beta in enumerate(task.frequency_ratios):
-        counter = [0, 0, 0, 0, 0, 0, 0]
+        counter = [0, 0, 0, 0, 0, 0, 0, 0]
 
         def fails(A: float, beta: float = beta) -> bool:
             return _fails(task, A, beta, g_tan_alpha, p, counter, options)
@@ -284,7 +357,8 @@ def _spectrum_chunk(task: SpectrumTask) -> dict[str, np.ndarray]:
             n_isl += 1
         out["n_islands"][k] = n_isl
         (out["runs"][k], out["failed_runs"][k], out["undetermined_runs"][k], out["slid_off_runs"][k],
-         out["pedestal_tips_runs"][k], out["lifted_off_runs"][k], out["impact_beyond_friction_runs"][k]) = counter
+         out["pedestal_tips_runs"][k], out["lifted_off_runs"][k], out["impact_beyond_friction_runs"][k],
+         out["settling_runs"][k]) = counter
     return out
 
 
@@ -307,6 +381,7 @@ def overturning_spectrum(
     phase: float | str = "onset",
     cycles: float = 3.0,
     free_time: float = 25.0,
+    undetermined: str = "fail",
     options: Options = Options(),
     workers: int | Any | None = None,
     folder: str | os.PathLike[str] | None = None,
@@ -345,6 +420,12 @@ def overturning_spectrum(
     free_time : float
         Longest free motion after the motion ends, in units of 1/p: the run ends earlier when the
         block is at rest or falls.
+    undetermined : {"fail", "safe"}
+        How a run without an outcome counts (still moving at the cap, or stopped by the solver):
+        ``"fail"`` (the default, conservative: the boundary is the smallest amplitude at which
+        the block is not shown to survive) or ``"safe"`` (the falls seen only: the boundary may
+        lie above the true one). Either way the runs are counted in ``undetermined_runs`` and
+        ``failed_runs``.
     options : Options
     workers : int, executor or Dask client
         As in :mod:`rocking.analyses.batch` (tasks are groups of frequencies).
@@ -368,14 +449,16 @@ def overturning_spectrum(
         outcome found (``edge_lower``/``edge_upper`` brackets, ``edge_to_failure`` True where
         the block fails above it), ``scan_fails`` (the coarse scan), ``runs``,
         ``failed_runs`` (solver failures: max_events, singular, step_failed; for stacks also
-        inconsistent, lost_contact and friction_gained; counted as safe), ``undetermined_runs`` (still
-        moving at the free-motion cap, counted as safe), ``slid_off_runs`` (stacks only) and
+        inconsistent, lost_contact and friction_gained), ``undetermined_runs`` (still moving at
+        the free-motion cap; both counted as ``undetermined`` says), ``slid_off_runs`` (stacks only) and
         ``pedestal_tips_runs`` (a pedestal of given width and height would tip, which the
         two-body model does not follow: counted as failing under every criterion) and
         ``lifted_off_runs`` (a body would leave its support while the statue stands, status
         ``lifted_off``: counted as failing too) and ``impact_beyond_friction_runs`` (an impact
         needed more floor friction than μs and the two-body model held the block anyway, status
-        ``impact_beyond_friction``: counted as failing too).
+        ``impact_beyond_friction``: counted as failing too) and ``settling_runs`` (the two-body
+        model or a one-block stack: still moving at the cap with less energy than the statue
+        needs to overturn, so it cannot fall: counted as safe, and not as undetermined).
 
     Notes
     -----
@@ -396,6 +479,8 @@ def overturning_spectrum(
         raise ValueError(f"repeated motion in {shapes!r}")
     if criterion not in CRITERIA:
         raise ValueError(f"criterion must be one of {', '.join(CRITERIA)}, got {criterion!r}")
+    if undetermined not in UNDETERMINED:
+        raise ValueError(f"undetermined must be one of {', '.join(UNDETERMINED)}, got {undetermined!r}")
     betas = _as_grid(frequency_ratios, "frequency_ratios")
     lo, hi = (float(x) for x in amplitude_range)
     if not (0 < lo < hi and math.isfinite(hi)):
@@ -418,14 +503,14 @@ def overturning_spectrum(
             tasks.append(
                 SpectrumTask(system, shape, tuple(float(b) for b in betas[r.start : r.stop]), scan, float(rtol),
                              criterion, phase if phase == "onset" else float(phase), float(cycles),
-                             float(free_time), options)
+                             float(free_time), options, undetermined)
             )
             index.append((si, r))
     store = None
     if folder is not None:
         fp = fingerprint({"study": "spectrum", "tasks": tasks, "version": _version()})
         meta = {"shapes": shapes, "frequency_ratios": betas.tolist(), "amplitude_range": [lo, hi],
-                "n_scan": int(n_scan), "rtol": rtol, "criterion": criterion}
+                "n_scan": int(n_scan), "rtol": rtol, "criterion": criterion, "undetermined": undetermined}
         store = ChunkStore(folder, study="spectrum", fingerprint=fp, n_chunks=len(tasks), meta=meta, fresh=fresh)
     parts = run_chunks(_spectrum_chunk, tasks, store=store, workers=workers,
                        sizes=[len(t.frequency_ratios) for t in tasks], progress=progress)
@@ -449,6 +534,7 @@ def overturning_spectrum(
         "pedestal_tips_runs": np.zeros((ns, nb), dtype=np.int64),
         "lifted_off_runs": np.zeros((ns, nb), dtype=np.int64),
         "impact_beyond_friction_runs": np.zeros((ns, nb), dtype=np.int64),
+        "settling_runs": np.zeros((ns, nb), dtype=np.int64),
     }
     for (si, r), part in zip(index, parts):
         for key, arr in full.items():
@@ -477,7 +563,7 @@ def overturning_spectrum(
             "runs": (dims, full["runs"]),
             "failed_runs": (dims, full["failed_runs"]),
             "undetermined_runs": (dims, full["undetermined_runs"], {
-                "long_name": "runs still moving at the free-motion cap (counted as safe)"}),
+                "long_name": f"runs still moving at the free-motion cap (counted as {_COUNTED[undetermined]})"}),
             "slid_off_runs": (dims, full["slid_off_runs"], {
                 "long_name": "stack runs where a block slid to the edge of the one below (counted as failing)"}),
             "pedestal_tips_runs": (dims, full["pedestal_tips_runs"], {
@@ -489,6 +575,9 @@ def overturning_spectrum(
             "impact_beyond_friction_runs": (dims, full["impact_beyond_friction_runs"], {
                 "long_name": "runs where an impact needed more floor friction than μs, which the two-body model's "
                              "impact law cannot give (counted as failing)"}),
+            "settling_runs": (dims, full["settling_runs"], {
+                "long_name": "runs still moving at the free-motion cap with less energy than the statue needs to "
+                             "overturn (counted as safe: they cannot fall)"}),
         },
         coords={
             "pulse": np.array(shapes, dtype=str),
@@ -506,6 +595,7 @@ def overturning_spectrum(
             "pedestal": int(system.n > 1) if isinstance(system, Stack) else int(system.pedestal is not None),
             "engine": "stack" if isinstance(system, Stack) else "system",
             "criterion": criterion,
+            "undetermined": undetermined,
             "rtol": float(rtol),
             "free_time": float(free_time),
             "cycles": float(cycles),
@@ -601,6 +691,14 @@ _MOTION_TITLES = {"sine": "one-sine pulse", "cosine": "one-cosine pulse", "ricke
                   "harmonic": "harmonic motion"}
 
 
+def counted_as(ds) -> str:
+    """How a spectrum counted its runs without an outcome, and where that may put its boundary
+    (a dataset made before the ``undetermined`` option counted them as safe)."""
+    if ds.attrs.get("undetermined", "safe") == "fail":
+        return "counted as failing, so a boundary may lie higher than shown"
+    return "counted as safe, so a boundary may lie lower than shown"
+
+
 def spectrum_report(ds, *, title: str = "Overturning spectra", chart: str | None = "spectrum.png") -> str:
     """A Markdown report of a spectrum: the block and the inputs, the boundary a_p/(g tan α) per
     motion and frequency ratio (with its safe islands, and "no overturning in the scanned range"
@@ -618,14 +716,19 @@ def spectrum_report(ds, *, title: str = "Overturning spectra", chart: str | None
              f"{top:.3g}, bisected to a relative {a['rtol']:g}; each run goes on {a['free_time']:g}/p after the motion"
              + (f"; harmonic motion of {a['cycles']:g} cycles" if "harmonic" in pulses else "") + ".", ""]
     runs = int(ds.runs.sum())
+    counted = counted_as(ds)
     unsure = int(ds.undetermined_runs.sum())
     if unsure:
         lines += [f"**{unsure} of {runs} runs were still moving at the end of their free motion: undetermined, "
-                  "counted as safe.** Raise spectrum.free_time to decide them.", ""]
+                  f"{counted}.** Raise spectrum.free_time to decide them.", ""]
+    settling = int(ds.settling_runs.sum()) if "settling_runs" in ds else 0
+    if settling:
+        lines += [f"{settling} of {runs} runs were still rocking at the end of their free motion with less energy than "
+                  "the block needs to overturn (on the still floor it can only lose energy): safe, decided.", ""]
     failed = int(ds.failed_runs.sum()) if "failed_runs" in ds else 0
     if failed:
         lines += [f"**{failed} of {runs} runs were stopped by the solver before a verdict (too many events, or no "
-                  "consistent contact mode): counted as safe, so a boundary may lie lower than shown.**", ""]
+                  f"consistent contact mode): {counted}.**", ""]
     slid = int(ds.slid_off_runs.sum())
     if slid:
         lines += [f"**In {slid} of {runs} runs a block slid to the edge of the one below, where the stack engine "

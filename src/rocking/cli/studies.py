@@ -220,6 +220,7 @@ class SpectrumConfig(_Section):
     phase: Literal["onset"] | Annotated[float, Field(ge=0, lt=2 * math.pi)] = "onset"
     cycles: Positive = 3.0
     free_time: NonNegative = 25.0  # units of 1/p
+    undetermined: Literal["fail", "safe"] = "fail"  # how a run without an outcome counts
 
 
 class _Study(_Section):
@@ -598,7 +599,7 @@ def spectrum_inputs(study: SpectrumStudy, base: Path) -> dict[str, Any]:
         raise ConfigError([("spectrum.motions", "must be a non-empty list without repeats")], src)
     return dict(system=system, shapes=list(s.motions), frequency_ratios=betas, amplitude_range=(lo, hi),
                 n_scan=s.n_scan, rtol=s.rtol, criterion=s.criterion, phase=s.phase, cycles=s.cycles,
-                free_time=s.free_time, options=options)
+                free_time=s.free_time, undetermined=s.undetermined, options=options)
 
 
 # ====================================================================== execution helpers
@@ -837,7 +838,7 @@ def spectrum(config: _CONFIG, out: _OUT = None, workers: _WORKERS = None, schedu
     the boundary; writes spectrum.nc, spectrum.csv, spectrum.png and spectrum_report.md into OUT
     and prints the boundary. Rerun the same command to resume an interrupted study.
     """
-    from ..analyses.spectra import block_text, overturning_spectrum, plot_spectra, spectrum_report
+    from ..analyses.spectra import block_text, counted_as, overturning_spectrum, plot_spectra, spectrum_report
 
     _check_workers(workers)
     study, base = load_study("spectrum", config)
@@ -872,12 +873,12 @@ def spectrum(config: _CONFIG, out: _OUT = None, workers: _WORKERS = None, schedu
     undetermined = int(ds.undetermined_runs.sum())
     if undetermined:
         console_lines.append(f"warning: {undetermined} of {int(ds.runs.sum())} runs were still moving at the free-motion "
-                             f"cap ({a['free_time']:g}/p after the motion): undetermined, counted as safe; raise "
-                             "spectrum.free_time")
+                             f"cap ({a['free_time']:g}/p after the motion): undetermined, {counted_as(ds)}; "
+                             "raise spectrum.free_time")
     failed = int(ds.failed_runs.sum())
     if failed:
         console_lines.append(f"warning: {failed} of {int(ds.runs.sum())} runs were stopped by the solver before a "
-                             "verdict: counted as safe, so a boundary may lie lower than shown (spectrum_report.md)")
+                             f"verdict: {counted_as(ds)} (spectrum_report.md)")
     slid = int(ds.slid_off_runs.sum())
     if slid:
         console_lines.append(f"note: in {slid} of {int(ds.runs.sum())} runs a block slid to the edge of the one below, "

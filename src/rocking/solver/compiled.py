@@ -74,8 +74,8 @@ _check_signals = types.ExternalFunction("PyErr_CheckSignals", types.int32())
 (S_STATUS, S_OVERTURN_TIME, S_EXCEED_TIME, S_PEAK_ROTATION, S_PEAK_SLIDING, S_RESIDUAL_SLIDING, S_IMPACTS,
  S_FIRST_ROCK, S_FIRST_SLIDE, S_TOP_RATIO, S_BALANCE, S_STEPS, S_EVENTS, S_T_END, S_N_NONPOSITIVE,
  S_PY_NONPOSITIVE, S_TOP_SLIP, S_UPLIFT, S_IMPACT_FLOOR_RATIO, S_IMPACT_FLOOR_SHORT, S_INDETERMINATE,
- S_D_IMPACT, S_D_FRICTION, S_W_INPUT, S_ENERGY_SCALE, S_REJECTED, S_HELD_IMPACT) = range(27)
-N_SUMMARY = 27
+ S_D_IMPACT, S_D_FRICTION, S_W_INPUT, S_ENERGY_SCALE, S_REJECTED, S_HELD_IMPACT, S_THETA_END) = range(28)
+N_SUMMARY = 28
 
 (STATUS_COMPLETED, STATUS_OVERTURNED, STATUS_MAX_EVENTS, STATUS_SINGULAR, STATUS_STEP_FAILED, STATUS_STILL_MOVING,
  STATUS_INTERRUPTED) = range(7)
@@ -1250,4 +1250,5 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
     summ[S_W_INPUT] = y[4]
     summ[S_ENERGY_SCALE] = energy_scale
     summ[S_REJECTED] = rejected
+    summ[S_THETA_END] = y[2]  # θ (rad) where the run ended: whether a statue left rocking can still fall
     return n_out, n_ev

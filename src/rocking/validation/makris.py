@@ -221,8 +221,9 @@ for mode 1, `"overturn"` for the islands); "exact" is the independent SciPy inte
 `rocking.validation.exact`, bisected inside a bracket grown from ours (the bracket only seeds the
 search: both ends are decided by the exact integration). The islands have no published numbers
 (they depend on α and η): every change of outcome of the library's spectrum is bisected again with
-the exact integration. The spectrum counts a run still moving at its free-time cap (25/p after the
-pulse) as safe; the exact integration needs no cap, since on a still floor the energy decides the
+the exact integration. The spectrum decides a run still moving at its free-time cap (25/p after the
+pulse) by its energy where it can (below the overturning barrier, inside α: safe) and counts any other
+as failing; the exact integration needs no cap, since on a still floor the energy decides the
 outcome (`rocking.validation.exact.rock`), so the agreement of every edge also shows that no such
 run changed an outcome here."""
 
