@@ -1408,6 +1408,17 @@ def test_the_friction_needed_up_to_a_tipping_angle_inside_a_step_is_searched_for
         booked, q, x_tip, at_tip = _need_across_a_tip(*moved, best=1.7)
         assert at_tip > max(1.75, q.max())
         assert booked == pytest.approx(at_tip, rel=1e-9), offset
+    if leaving:
+        # The tip between the last two samples (the block 0.02 rad inside it): the best sample is
+        # the last but one, its right neighbour the last, −1. The parabola through that −1
+        # estimates 4.17, far below the need at the tip, 7.94: with 5.0 booked the stretch must
+        # still be searched (mutant e1dc36a8, which skipped the right neighbour's check at the
+        # last but one sample, left 5.0).
+        booked, q, x_tip, at_tip = _need_across_a_tip(-(alpha - 0.02), *case[1:], best=5.0)
+        assert int(np.argmax(q)) == E.N_SUB - 1 and q[-1] == -1.0 and 0.75 < x_tip < 1.0
+        d2 = q[-3] - 2.0 * q[-2] + q[-1]
+        assert q[-2] - (q[-3] - q[-1]) ** 2 / (8.0 * d2) < 0.999 * 5.0 and q[-2] < 0.999 * 5.0
+        assert at_tip > 7.0 and booked == pytest.approx(at_tip, rel=1e-9)
 
 
 def _statue_on_pedestal_at_rest(statue_width, statue_height, floor_friction, top_friction):
