@@ -2078,6 +2078,23 @@ def test_the_friction_a_stack_at_rest_needs_under_a_record_is_the_floor_s():
         assert interface["required_friction"] == pytest.approx(need, rel=1e-12)
 
 
+def test_the_friction_a_stack_at_rest_needs_at_its_first_instant_counts():
+    """The same stack under a record whose floor acceleration is largest at t = 0 (2.5 m/s², then
+    down to ±1 m/s²): it stays at rest, and each interface needs 2.5/g, at the run's first
+    instant, which only the tracking of the starting mode sees (the rest jumps track their ends;
+    the start of the first is t = 0). Mutant 43c24a96 read the forces there as known, before any
+    were made (zeros: no need), and booked 1/g."""
+    stack = Stack(blocks=(Block(name="pedestal", width=0.8, height=0.5, mass=100.0),
+                          Block(name="statue", width=0.5, height=0.6, mass=50.0)),
+                  interfaces=(Interface(friction=Friction(static=0.8, kinetic=0.7)), Interface()))
+    motion = GroundMotion(time=np.array([0.0, 0.1, 0.5, 1.0, 1.5]), values=np.array([2.5, 0.0, 1.0, -1.0, 0.0]))
+    options = rocking.Options()
+    s = simulate_stack(stack, motion, options=options).summary()
+    assert all(b["first_sliding_time"] is None and b["first_rocking_time"] is None for b in s["blocks"])
+    for interface in s["interfaces"]:
+        assert interface["required_friction"] == pytest.approx(2.5 / options.gravity, rel=1e-14)
+
+
 @pytest.mark.parametrize("motion", [
     rocking.Harmonic(amplitude=3.0, frequency=2.0, cycles=2, form="sin"),
     rocking.Harmonic(amplitude=-3.0, frequency=1.3, cycles=2.5),
