@@ -198,6 +198,8 @@ MEANING: dict[str, tuple[str, str]] = {
     "SpectrumConfig.phase": ("rad", "sine-pulse phase ψ, or \"onset\" = asin(1/A)"),
     "SpectrumConfig.cycles": ("–", "cycles of the harmonic motion"),
     "SpectrumConfig.free_time": ("1/p", "longest free motion after the motion"),
+    "SpectrumConfig.undetermined": ("", "how a run still moving at that cap (with energy enough to fall) or stopped "
+                                        "by the solver counts: \"fail\" (conservative) or \"safe\""),
 }
 
 #: (heading, the model of the whole file, a sentence) for each kind of file.
