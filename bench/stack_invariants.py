@@ -13,6 +13,12 @@ suite's random-stack tests check:
 
 Usage: ``.venv/bin/python bench/stack_invariants.py --seeds 1-12 --runs 150`` (about 2 minutes
 once the engine is compiled; docs/theory/stack.md §7 and §9 give what it found on 2026-12-07).
+
+``--floors jumping`` puts the same stacks under floors whose acceleration jumps, which the suite's
+motions never do (their sine pulses, harmonics and records are continuous): a rectangle pulse, a
+one-cosine pulse, a cos harmonic (each jumps at its start, the pulses at their end too) or a sine
+pulse with a phase, drawn from a generator of its own (seed 1000 + the seed), so the stacks are the
+suite's. About a minute for seeds 1–12.
 """
 
 from __future__ import annotations
@@ -29,6 +35,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
 from test_stack_engine import _deepest_sink, _random_stacks  # noqa: E402
 
+import rocking  # noqa: E402
 from rocking.stack import simulate_stack  # noqa: E402
 
 
@@ -38,6 +45,20 @@ def _seeds(spec: str) -> list[int]:
         lo, _, hi = part.partition("-")
         out.extend(range(int(lo), int(hi or lo) + 1))
     return out
+
+
+def jumping_floor(rng: np.random.Generator):
+    """A floor motion that jumps (see the module docstring), amplitudes 1–8 m/s² of either sign."""
+    kind = int(rng.integers(0, 4))
+    a = float(rng.uniform(1, 8)) * (1 if rng.random() < 0.5 else -1)
+    if kind == 0:
+        return rocking.RectanglePulse(amplitude=a, width=float(rng.uniform(0.1, 1.5)))
+    if kind == 1:
+        return rocking.CosinePulse(amplitude=a, frequency=float(rng.uniform(0.5, 3)))
+    if kind == 2:
+        return rocking.Harmonic(amplitude=a, frequency=float(rng.uniform(0.5, 3)), cycles=int(rng.integers(2, 5)),
+                                form="cos")
+    return rocking.SinePulse(amplitude=abs(a), frequency=float(rng.uniform(0.5, 3)), phase=float(rng.uniform(0.3, 3.0)))
 
 
 def check(stack, motion) -> tuple[str, list[str]]:
@@ -68,17 +89,23 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", default="1-12", help="seeds of _random_stacks, e.g. 1-12 or 1,4,7")
     parser.add_argument("--runs", type=int, default=150, help="stacks per seed")
+    parser.add_argument("--floors", choices=("suite", "jumping"), default="suite",
+                        help="the suite's motions, or floors that jump (the same stacks)")
     args = parser.parse_args(argv)
     total, undetermined, broken_runs = Counter(), 0, 0
     t0 = time.perf_counter()
     for seed in _seeds(args.seeds):
+        floors = np.random.default_rng(1000 + seed)
         for i, (stack, motion) in enumerate(_random_stacks(seed, args.runs)):
+            if args.floors == "jumping":
+                motion = jumping_floor(floors)
             status, broken = check(stack, motion)
             total[status] += 1
             undetermined += status not in ("completed", "overturned")
             broken_runs += bool(broken)
             if status not in ("completed", "overturned") or broken:
-                print(f"seed {seed:3d} run {i:4d}: {status}" + "".join(f"; {b}" for b in broken), flush=True)
+                print(f"seed {seed:3d} run {i:4d}: {status}" + (f" ({motion!r})" if args.floors == "jumping" else "")
+                      + "".join(f"; {b}" for b in broken), flush=True)
     runs = sum(total.values())
     print(f"\n{runs} runs in {time.perf_counter() - t0:.0f} s: " + ", ".join(f"{k} {v}" for k, v in total.most_common()))
     print(f"undetermined {undetermined}, breaking an invariant {broken_runs}")
