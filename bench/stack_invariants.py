@@ -33,9 +33,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
-from test_stack_engine import _deepest_sink, _random_stacks  # noqa: E402
+from test_stack_engine import _deepest_sink, _jumping_floor, _random_stacks  # noqa: E402
 
-import rocking  # noqa: E402
 from rocking.stack import simulate_stack  # noqa: E402
 
 
@@ -45,20 +44,6 @@ def _seeds(spec: str) -> list[int]:
         lo, _, hi = part.partition("-")
         out.extend(range(int(lo), int(hi or lo) + 1))
     return out
-
-
-def jumping_floor(rng: np.random.Generator):
-    """A floor motion that jumps (see the module docstring), amplitudes 1–8 m/s² of either sign."""
-    kind = int(rng.integers(0, 4))
-    a = float(rng.uniform(1, 8)) * (1 if rng.random() < 0.5 else -1)
-    if kind == 0:
-        return rocking.RectanglePulse(amplitude=a, width=float(rng.uniform(0.1, 1.5)))
-    if kind == 1:
-        return rocking.CosinePulse(amplitude=a, frequency=float(rng.uniform(0.5, 3)))
-    if kind == 2:
-        return rocking.Harmonic(amplitude=a, frequency=float(rng.uniform(0.5, 3)), cycles=int(rng.integers(2, 5)),
-                                form="cos")
-    return rocking.SinePulse(amplitude=abs(a), frequency=float(rng.uniform(0.5, 3)), phase=float(rng.uniform(0.3, 3.0)))
 
 
 def check(stack, motion) -> tuple[str, list[str]]:
@@ -98,7 +83,7 @@ def main(argv=None) -> int:
         floors = np.random.default_rng(1000 + seed)
         for i, (stack, motion) in enumerate(_random_stacks(seed, args.runs)):
             if args.floors == "jumping":
-                motion = jumping_floor(floors)
+                motion = _jumping_floor(floors)
             status, broken = check(stack, motion)
             total[status] += 1
             undetermined += status not in ("completed", "overturned")
