@@ -1017,6 +1017,30 @@ def _jumping_floor(rng: np.random.Generator):
     return rocking.SinePulse(amplitude=abs(a), frequency=float(rng.uniform(0.5, 3)), phase=float(rng.uniform(0.3, 3.0)))
 
 
+def test_a_vase_set_rocking_by_the_block_under_it_rocks_on_from_its_onset():
+    """Seed 6's 57th random stack (a 118 kg squat base, a 6 kg block 0.77 m wide on it, a 21 kg
+    vase on top) under a cos harmonic of 1.96 m/s²: the floor's jump at t = 0 sets the middle
+    block and the vase rocking on the base as one (their threshold is 1.91 m/s²), and at
+    3.7042 ms the vase's far corner unloads: it rocks on the middle block from rest. Its force
+    there crossed zero at a finite rate, so its rotation grows from the onset as (t − t₀)³: at the
+    samples 5 and 10 ms, |φ| ≈ 1.4e-9 and 2.0e-7 rad, a ratio within a factor 2 of
+    ((5 − 3.7042)/(10 − 3.7042))³ = 0.0087 (0.0067). Mutant 90474d2e (the window of a dip search
+    begun a sample early, at the step's start where the onset had just put the guard at zero) found
+    a landing 57 ns after the onset and kept the vase flat for 10 ms (seen, compiled copy)."""
+    for stack, motion in _random_stacks(6, 57):
+        pass
+    assert isinstance(motion, rocking.Harmonic) and motion.form == "cos"
+    r = simulate_stack(stack, motion, duration=0.015, options={"save_dt": 0.005})
+    onset = r.events[0, 0]
+    assert r.events[:, :4].tolist() == [[onset, 2, engine.G_OTHER, 1]] and onset == pytest.approx(3.7042e-3, abs=1e-7)
+    after = r.t > onset
+    assert np.all(r.normal_state[after, 2] == 1)
+    phi = {round(float(t), 6): abs(p) for t, p in zip(r.t, r.rotation[:, 2])}
+    assert 0 < phi[0.005] < phi[0.01] < 1e-5
+    cubic = ((0.005 - onset) / (0.01 - onset)) ** 3
+    assert 0.5 * cubic < phi[0.005] / phi[0.01] < 2.0 * cubic
+
+
 @pytest.mark.parametrize("seed", [2, 11])
 def test_random_stacks_under_floors_that_jump_keep_the_engines_invariants(seed):
     """The random stacks of seeds 2 and 11 under floors that jump (``_jumping_floor``, drawn with
