@@ -462,6 +462,36 @@ def test_a_pedestal_that_would_tip_fails_the_scan_where_it_first_would():
     assert "runs the pedestal would tip" in spectrum_report(ds)
 
 
+def test_a_pedestal_that_would_tip_fails_even_where_the_statue_cannot_fall_any_more(monkeypatch):
+    """A run still moving at its cap with too little energy for the statue to fall is decided
+    safe (``settling_runs``), but not where the pedestal would have tipped on the way: that is a
+    fall risk the two-body model does not follow, failing under every criterion whatever the
+    statue's energy (a solver summary made up here: still moving, the uplift at 0.5 s, the energy
+    a tenth of the barrier, θ = 0.01 rad where it ended). Without the uplift the same summary is
+    settled."""
+    import dataclasses as dc
+
+    from rocking.analyses import batch
+    from rocking.analyses.spectra import SpectrumTask, _fails
+    from rocking.solver import compiled as C
+
+    statue = rk.Statue(width=0.4, height=2.0, mass=10.0)
+    pedestal = rk.Pedestal(mass=50.0, friction=rk.Friction(static=0.8, kinetic=0.7), width=0.3, height=1.0)
+    barrier = 10.0 * G * statue.semi_diagonal * (1.0 - math.cos(statue.slenderness))
+    raw = np.full(C.N_SUMMARY, np.nan)
+    raw[[C.S_STATUS, C.S_IMPACTS, C.S_W_INPUT, C.S_D_IMPACT, C.S_D_FRICTION, C.S_BALANCE, C.S_THETA_END]] = (
+        C.STATUS_STILL_MOVING, 3, 0.3 * barrier, 0.2 * barrier, 0.0, 0.0, 0.01)
+    # counted: the run (0), still moving (2) and the pedestal tipping (4); or the run and settled (7)
+    for uplift, fails, counted in ((0.5, True, [1, 0, 1, 0, 1, 0, 0, 0]), (math.nan, False, [1, 0, 0, 0, 0, 0, 0, 1])):
+        raw[C.S_UPLIFT] = uplift
+        monkeypatch.setattr(batch, "run_raw", lambda *a, raw=raw.copy(): raw)
+        task = SpectrumTask(rk.System(statue=statue, pedestal=pedestal), "sine", (2.0,), (2.0,), 1e-3, "overturn",
+                            "onset", 3.0, 25.0, OPTS)
+        counter = [0] * 8
+        assert _fails(task, 2.0, 2.0, G * 0.2, 2.0, counter, dc.replace(OPTS, free_time_limit=10.0)) is fails
+        assert counter == counted
+
+
 def test_a_run_in_which_the_block_would_jump_counts_as_failing():
     """A 0.5 × 2 m block under one-cosine pulses at ω_p/p = 5, from 20 to 30 g tan α: the Housner
     model overturns it only near 31 g tan α, but from about 25.9 g tan α the block's base force

@@ -182,8 +182,10 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
         counter[1] += 1
         return _undecided(task, task.criterion == "no_impact" and impacted)
     moving = status == C.STATUS_STILL_MOVING
-    if moving and _below_overturning_energy(task.system, raw, options.gravity):
-        counter[7] += 1  # it rocks on, but cannot fall (nor reach α): decided, safe
+    if moving and math.isnan(raw[C.S_UPLIFT]) and _below_overturning_energy(task.system, raw, options.gravity):
+        # it rocks on, but cannot fall (nor reach α): decided, safe (a pedestal that would have
+        # tipped is a fall risk whatever the energy: below)
+        counter[7] += 1
         return False
     if moving:
         counter[2] += 1
