@@ -1001,6 +1001,25 @@ def _random_stacks(seed: int, count: int):
             yield stack, motion
 
 
+def _assert_the_engines_invariants(stack, motion, r):
+    """What every run of the engine must keep: no corner sunk into the face below (1e-5 m), the
+    ledger balanced where the run reached a verdict (3e-7 of its energy scale), no impact and no
+    friction giving energy."""
+    assert _deepest_sink(r) > -1e-5, (stack, motion, r.verdict)
+    scale = np.max(np.abs(r.input_work)) + np.max(np.abs(r.energy - r.initial_energy))
+    if r.status in ("completed", "overturned"):
+        assert np.max(np.abs(r.balance_error())) <= 3e-7 * scale, (stack, motion)
+    # no impact creates energy: the worst is 5e-10 of the scale (the impulse solve's accuracy,
+    # 1e-9 of the energy before the impact); before 2026-11-27, 4e-5 (a restitution couple)
+    # and 4e-6 (a slow slip stopped, or a block landed, by the rest rules)
+    impacts = r.events[r.events[:, 2] == -1]
+    assert len(impacts) == 0 or impacts[:, 5].min() >= -1e-8 * scale, (stack, motion)
+    # nor does friction, but where a slip held in tension is pushed on by its own (seed 4's
+    # 64th stack, 1e-4 of its scale): that run is no result (test_a_run_in_which_friction_…)
+    if r.status != "friction_gained":
+        assert np.all(np.diff(r.friction_loss) >= -1e-9 * scale), (stack, motion)
+
+
 def _jumping_floor(rng: np.random.Generator):
     """A floor motion whose acceleration jumps, which ``_random_stacks``'s never does: a rectangle
     pulse, a one-cosine pulse, a cos harmonic (each jumps at its start, the pulses at their end
@@ -1056,14 +1075,7 @@ def test_random_stacks_under_floors_that_jump_keep_the_engines_invariants(seed):
         motion = _jumping_floor(floors)
         r = simulate_stack(stack, motion, options={"save_dt": 0.005, "max_events": 5000})
         statuses.append(r.status)
-        assert _deepest_sink(r) > -1e-5, (stack, motion, r.verdict)
-        scale = np.max(np.abs(r.input_work)) + np.max(np.abs(r.energy - r.initial_energy))
-        if r.status in ("completed", "overturned"):
-            assert np.max(np.abs(r.balance_error())) <= 3e-7 * scale, (stack, motion)
-            impacts = r.events[r.events[:, 2] == -1]
-            assert len(impacts) == 0 or impacts[:, 5].min() >= -1e-8 * scale, (stack, motion)
-        if r.status != "friction_gained":
-            assert np.all(np.diff(r.friction_loss) >= -1e-9 * scale), (stack, motion)
+        _assert_the_engines_invariants(stack, motion, r)
         for summary, interface in zip(r.interfaces, stack.interfaces):
             if interface.friction is not None:
                 assert summary["required_friction"] <= interface.friction.mu_s * (1 + 1e-6), (stack, motion)
@@ -1087,19 +1099,7 @@ def test_no_corner_sinks_into_the_face_below_in_random_stacks(seed):
         r = simulate_stack(stack, motion, options={"save_dt": 0.005, "max_events": 5000})
         statuses.add(r.status)
         undetermined += r.status not in ("completed", "overturned")
-        assert _deepest_sink(r) > -1e-5, (stack, motion, r.verdict)
-        scale = np.max(np.abs(r.input_work)) + np.max(np.abs(r.energy - r.initial_energy))
-        if r.status in ("completed", "overturned"):
-            assert np.max(np.abs(r.balance_error())) <= 3e-7 * scale, (stack, motion)
-        # no impact creates energy: the worst is 5e-10 of the scale (the impulse solve's accuracy,
-        # 1e-9 of the energy before the impact); before 2026-11-27, 4e-5 (a restitution couple)
-        # and 4e-6 (a slow slip stopped, or a block landed, by the rest rules)
-        impacts = r.events[r.events[:, 2] == -1]
-        assert len(impacts) == 0 or impacts[:, 5].min() >= -1e-8 * scale, (stack, motion)
-        # nor does friction, but where a slip held in tension is pushed on by its own (seed 4's
-        # 64th stack, 1e-4 of its scale): that run is no result (test_a_run_in_which_friction_…)
-        if r.status != "friction_gained":
-            assert np.all(np.diff(r.friction_loss) >= -1e-9 * scale), (stack, motion)
+        _assert_the_engines_invariants(stack, motion, r)
     assert {"completed", "overturned"} <= statuses
     # a ratchet: 7 and 10 until the impact rules of 2026-11-24 (the tests below), 4 and 6 until
     # impacts were kept from creating energy and the rest landing given a fallback (2026-11-27),
