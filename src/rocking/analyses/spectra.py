@@ -204,35 +204,37 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
     return overturned
 
 
+def _cannot_overturn(width: float, height: float, mass: float, gravity: float, energy: float, theta: float) -> bool:
+    """Can a block left rocking on a still floor, at θ (rad) with energy E above its rest (J, an
+    upper bound), no longer fall? On a still floor the energy only falls (friction and every impact
+    dissipate). Inside its barrier (|θ| < α) with E below m·g·(R − h), the rise of its centre from
+    flat to balanced on a corner (= m·g·R·(1 − cos α), Eqs. 16–17's V at α), it never reaches ±α:
+    a block turned to ±α has a corner R below its centre, whether it touches the floor or flies.
+    Past α, V falls, and no energy bounds the fall."""
+    alpha = math.atan2(width, height)
+    barrier = mass * gravity * (0.5 * math.hypot(width, height) - 0.5 * height)
+    return bool(abs(theta) < alpha and energy < barrier)
+
+
 def _below_overturning_energy(system: System, raw: np.ndarray, gravity: float) -> bool:
-    """Can a run still moving at its cap no longer overturn? Its floor is still by then (the cap
-    is free motion after the pulse), so the energy T + V relative to the floor (Eqs. 16–17; V = 0
-    with the statue upright) can only fall: friction and every impact dissipate. A statue inside
-    its barrier (|θ| < α where the run ended) with less energy than V(α) = m₂·g·R·(1 − cos α)
-    can never reach ±α; past α, V falls, and no energy bounds the fall. The run started from rest
-    (E = 0), so by the ledger E ≤ W − D_impact − D_friction + its balance error (J)."""
+    """:func:`_cannot_overturn` for the statue of a run still moving at its cap (its floor is still
+    by then: the cap is free motion after the pulse). The run started from rest (E = 0), so by the
+    ledger E ≤ W − D_impact − D_friction + its balance error; θ is where the run ended."""
     statue = system.statue
-    alpha = statue.slenderness
-    barrier = statue.mass * gravity * statue.semi_diagonal * (1.0 - math.cos(alpha))
     energy = raw[C.S_W_INPUT] - raw[C.S_D_IMPACT] - raw[C.S_D_FRICTION] + raw[C.S_BALANCE]
-    return bool(abs(raw[C.S_THETA_END]) < alpha and energy < barrier)
+    return _cannot_overturn(statue.width, statue.height, statue.mass, gravity, energy, raw[C.S_THETA_END])
 
 
 def _one_block_below_overturning_energy(response: Any, gravity: float) -> bool:
-    """:func:`_below_overturning_energy` for a one-block stack: inside α (its rotation on the
-    floor where the run ended) with E − E₀ + the ledger's error below m·g·(R − H/2), the rise of
-    its centre from flat to balanced on a corner (J). A block turned to ±α has a corner R below its
-    centre whether it touches the floor or flies, so no pose past α has less potential energy.
-    (For taller stacks the least energy of a fall is not so easily bounded: they stay
-    undetermined.)"""
+    """:func:`_cannot_overturn` for a one-block stack: E − E₀ plus the ledger's largest error, and
+    its rotation on the floor where the run ended. (For taller stacks the least energy of a fall
+    is not so easily bounded: they stay undetermined.)"""
     stack = response.stack
     if stack.n != 1:
         return False
     block = stack.blocks[0]
-    alpha = math.atan2(block.width, block.height)
-    barrier = block.mass * gravity * (0.5 * math.hypot(block.width, block.height) - 0.5 * block.height)
     energy = float(response.energy[-1] - response.initial_energy) + float(np.max(np.abs(response.balance_error())))
-    return bool(abs(response.rotation[-1, 0]) < alpha and energy < barrier)
+    return _cannot_overturn(block.width, block.height, block.mass, gravity, energy, response.rotation[-1, 0])
 
 
 _STACK_SOLVER_FAILURES = ("inconsistent", "step_failed", "max_events", "lost_contact", "friction_gained")

@@ -184,7 +184,7 @@ class StackResponse:
         while it stuck: its contact forces between impacts and, at each impact it came out of
         stuck, the ratio of the impulse that crossed it."""
         top = self.blocks[-1]
-        scale = float(np.max(np.abs(self.input_work)) + np.max(np.abs(self.energy - self.initial_energy)))
+        scale = self.energy_scale
         out = {key: top[key] for key in (
             "overturned", "overturn_time", "peak_rotation", "peak_sliding", "residual_sliding",
             "first_rocking_time", "first_sliding_time", "lifted_off_time")}
@@ -195,6 +195,11 @@ class StackResponse:
             blocks=[dict(b) for b in self.blocks], interfaces=[dict(f) for f in self.interfaces],
         )
         return out
+
+    @property
+    def energy_scale(self) -> float:
+        """max |W_in| + max |E − E₀| over the run, J: what the ledger's checks are relative to."""
+        return float(np.max(np.abs(self.input_work)) + np.max(np.abs(self.energy - self.initial_energy)))
 
     def balance_error(self) -> np.ndarray:
         """E(t) − E(0) − W_in + D_friction + D_impact, J (zero up to the solver's accuracy)."""
@@ -352,7 +357,7 @@ def friction_gain_time(response: StackResponse) -> float | None:
     loss = response.friction_loss
     if len(loss) == 0:
         return None
-    scale = np.max(np.abs(response.input_work)) + np.max(np.abs(response.energy - response.initial_energy))
+    scale = response.energy_scale
     peak = np.maximum.accumulate(loss)
     over = np.nonzero(peak - loss > FRICTION_GAIN_LIMIT * scale)[0]
     if not len(over) or not scale > 0:
