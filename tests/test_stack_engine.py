@@ -183,6 +183,33 @@ def test_a_slip_that_stops_above_mu_s_and_runs_back_within_a_sample_is_followed(
         assert len(stops) == 2 and 4.3e-4 < stops[1] - stops[0] < 4.4e-4
 
 
+def test_a_floor_face_at_its_bound_under_a_statue_rocking_to_its_fall_lets_the_statue_fall():
+    """A 0.26 × 1.40 m, 404 kg statue (r = 0.725) rocks to its fall on a 0.63 × 0.34 m, 784 kg
+    pedestal (μs = 0.5913, μk = 0.5902) under Rinaldi at a PGA of 4.18 m/s² (bench/verdict_scan.py
+    --seed 3, run 259). A stick guard that starts a step at its bound and stays beyond it is an
+    event from the step's start only while everything is at rest (the `rest_step` condition of
+    the step loop). Applied while the statue rocks, the floor face left stuck at its bound by the
+    event before came back to the same event 50 times, and the run stopped `inconsistent` at
+    3.699 s (19 of those 800 runs did; a mutant of the forty-fourth round that dropped the
+    condition). The statue falls at 3.741 s, as in the two-body model (3.740 s)."""
+    from rocking.io.records import read_record
+
+    motion = read_record("Northridge1994_RinaldiReceivingSta_228").trimmed(20.0).scaled(pga=4.179394075546052)
+    friction = Friction(static=0.5913231690154952, kinetic=0.5901792146893219)
+    pw, ph, pm = 0.6342878817328715, 0.3441384699883265, 783.8927810544168
+    sw, sh, sm, rest = 0.26294798789766616, 1.3969196510584043, 403.6999918749701, 0.7250341501740163
+    stack = Stack(blocks=(Block(width=pw, height=ph, mass=pm), Block(width=sw, height=sh, mass=sm)),
+                  interfaces=(Interface(friction=friction), Interface(restitution=rest)))
+    r = simulate_stack(stack, motion)
+    assert r.status == "overturned", r.verdict
+    two = rocking.simulate(rocking.System(statue=rocking.Statue(width=sw, height=sh, mass=sm, restitution=rest),
+                                          pedestal=rocking.Pedestal(mass=pm, friction=friction, width=pw, height=ph)),
+                           motion)
+    assert two.status == "overturned"
+    assert r.blocks[1]["overturn_time"] == pytest.approx(two.overturn_time, abs=3e-3)
+    assert r.blocks[1]["overturn_time"] == pytest.approx(3.7406, abs=1e-3)
+
+
 @pytest.mark.parametrize("amplitude", [2.0, 3.0, 5.0])
 def test_statue_on_sliding_pedestal_matches_todays_solver(amplitude):
     fr = Friction(static=0.2, kinetic=0.15)
