@@ -201,7 +201,8 @@ def test_choose_design_still_moving_is_not_safe():
     assert c.verdict.startswith("No candidate met every requirement") and "Nothing is recommended" in c.verdict
     # both have one unsafe motion; the real fall counts second: 0.1 (undetermined only) comes first
     assert c.fewest_overturns == (0, 0)
-    assert "undetermined (still moving at the end, a body lifting off, or the run stopped) under 1: B" in "\n".join(c.lines)
+    assert ("undetermined (still moving at the end with energy enough to overturn, a body lifting off, or the run "
+            "stopped) under 1: B") in "\n".join(c.lines)
     assert np.isnan(c.attrs()["recommended_mu_s"]) and c.attrs()["fewest_overturns_mu_s"] == 0.1
 
 
@@ -236,6 +237,11 @@ def test_run_undetermined_reads_still_moving_when_present():
     assert run_undetermined(ds).tolist() == [False, False, True, False]
     ds["still_moving"] = ("run", [True, False, False, False])
     assert run_undetermined(ds).tolist() == [True, False, True, False]
+    # still moving, but with too little energy left to overturn: proven, as a run at rest is
+    ds["status"] = ("run", ["still_moving", "overturned", "step_failed", "still_moving"])
+    ds["still_moving"] = ("run", [True, False, False, True])
+    ds["settled_by_energy"] = ("run", [True, False, False, False])
+    assert run_undetermined(ds).tolist() == [False, False, True, True]
 
 
 def test_lengths_and_kinetic_friction_read_as_written(design):

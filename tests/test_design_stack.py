@@ -496,29 +496,39 @@ def test_spectrum_of_a_one_block_stack_is_the_statue_spectrum():
 
 
 def test_a_one_block_stack_left_rocking_is_settled_only_inside_its_barrier():
-    """A one-block stack cut while it rocks gently is settled (E − E₀ below m·g·(R − H/2), inside
-    α); one cut as it falls, past α, is not, although its energy is below the barrier (E − E₀ < 0:
-    past α its weight works for it); a two-block stack never is (no bound is known for it)."""
-    from rocking.analyses.spectra import _one_block_below_overturning_energy, spectrum_motion
+    """A one-block stack cut while it rocks gently after its pulse is settled (E − E₀ below
+    m·g·(R − H/2), inside α), and says so in its summary, verdict and report; cut at the same
+    instant while the floor still moves, it is not (the floor may still give it energy). One cut
+    as it falls, past α, is not, although its energy is below the barrier (E − E₀ < 0: past α its
+    weight works for it); a two-block stack never is (no bound is known for it)."""
+    from rocking.analyses.spectra import spectrum_motion
+    from rocking.report.stack import stack_checks, stack_verdict
 
     block = Stack(blocks=(Block(width=0.3, height=1.5, mass=1.0),), interfaces=(Interface(),))
     alpha, barrier = math.atan(0.2), G * (math.hypot(0.15, 0.75) - 0.75)
-    gentle = simulate_stack(block, rk.SinePulse(amplitude=4.0, frequency=1.5), duration=0.5, options=OPTS)
+    gentle = simulate_stack(block, rk.SinePulse(amplitude=4.0, frequency=3.0), duration=0.5, options=OPTS)
     assert gentle.status == "still_moving" and 1e-3 < abs(gentle.rotation[-1, 0]) < alpha
     assert 0 < gentle.energy[-1] - gentle.initial_energy < barrier
-    assert _one_block_below_overturning_energy(gentle, G)
+    assert gentle.settled_by_energy and gentle.summary()["settled_by_energy"]
+    assert gentle.verdict.startswith("did not overturn; still moving at t = 0.500 s, with less energy")
+    assert stack_verdict(gentle).startswith("No block overturns: the block is still moving")
+    rest = [c for c in stack_checks(gentle) if c.name.startswith("run ends at rest")]
+    assert [c.result for c in rest] == ["pass"]
+    during = simulate_stack(block, rk.SinePulse(amplitude=4.0, frequency=1.5), duration=0.5, options=OPTS)
+    assert during.status == "still_moving" and 0 < during.energy[-1] - during.initial_energy < barrier
+    assert not during.settled_by_energy and during.verdict.startswith("undetermined: still moving")
     statue = rk.Statue(width=0.3, height=1.5, mass=1.0)
     pulse = spectrum_motion("sine", 1.479, 1.0, g_tan_alpha=G * 0.2, p=statue.frequency_parameter(G))
-    falling = simulate_stack(block, pulse, duration=pulse.duration, options=OPTS)
+    falling = simulate_stack(block, pulse, duration=pulse.duration + 0.01, options=OPTS)
     assert falling.status == "still_moving" and abs(falling.rotation[-1, 0]) > 2 * alpha
     assert falling.energy[-1] - falling.initial_energy < 0
-    assert not _one_block_below_overturning_energy(falling, G)
+    assert not falling.settled_by_energy
     assert simulate_stack(block, pulse, options=OPTS).status == "overturned"  # (it does fall)
     two = Stack(blocks=(Block(width=1.0, height=0.3, mass=50.0), Block(width=0.3, height=1.5, mass=1.0)),
                 interfaces=(Interface(), Interface()))
-    rocking_on_top = simulate_stack(two, rk.SinePulse(amplitude=4.0, frequency=1.5), duration=0.5, options=OPTS)
+    rocking_on_top = simulate_stack(two, rk.SinePulse(amplitude=4.0, frequency=3.0), duration=0.5, options=OPTS)
     assert rocking_on_top.status == "still_moving"
-    assert not _one_block_below_overturning_energy(rocking_on_top, G)
+    assert not rocking_on_top.settled_by_energy
 
 
 # ------------------------------------------------------------------------------ the command

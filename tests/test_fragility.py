@@ -183,6 +183,32 @@ def test_a_run_the_solver_stops_before_a_verdict_counts_as_a_fall_and_is_reporte
     assert "1 run(s) were stopped by the solver before a verdict" in text and "still moving" not in text
 
 
+def test_a_run_still_moving_with_too_little_energy_to_overturn_counts_as_a_survival():
+    """A 0.4 × 1.6 m statue under one sine of 1 s (a record), its free motion cut after 0.2 s. At a
+    PGA of 2 m/s² it never rocks; at 3 m/s² it still rocks at the cut, inside α with less energy
+    than the barrier m·g·R·(1 − cos α) (``settled_by_energy``): no fall, counted in ``settled``;
+    at 5 m/s² it still rocks with more (undetermined: a fall, conservatively). Given 30 s of free
+    motion, the 3 m/s² run does come to rest, and the 5 m/s² one falls. Until 2026-12-07 the
+    study counted the settled run as a fall too."""
+    from rocking.analyses.fragility import fragility_report_lines
+    from rocking.excitation.record import GroundMotion
+
+    t = np.linspace(0.0, 1.0, 201)
+    rec = {"one sine": GroundMotion(time=t, values=np.sin(2 * np.pi * t), name="one sine")}
+    system = rk.System(statue=rk.Statue(width=0.4, height=1.6, mass=200.0))
+    ds = ida(system, rec, [2.0, 3.0, 5.0], free_time=0.2, options=rk.Options(gravity=G), workers=1)
+    assert ds.status.values[0, 0].tolist() == ["completed", "still_moving", "still_moving"]
+    assert ds.settled_by_energy.values[0, 0].tolist() == [False, True, False]
+    assert ds.fall.values[0, 0].tolist() == [False, False, True]
+    assert ds.exceed.values[0, 0].tolist() == [False, False, True]
+    assert int(ds.settled.values[0]) == 1 and int(ds.undetermined.values[0]) == 1
+    text = "\n".join(fragility_report_lines(fragility_curves(ds, n_boot=10, seed=1), ds, free_time=0.2))
+    assert "1 run(s) were still moving 0.2 s after their record ended, with less energy" in text
+    assert "**1 run(s) were still moving 0.2 s after their record ended: undetermined" in text
+    longer = ida(system, rec, [3.0, 5.0], free_time=30.0, options=rk.Options(gravity=G), workers=1)
+    assert longer.status.values[0, 0].tolist() == ["completed", "overturned"]
+
+
 def test_a_statue_on_a_pedestal_that_would_tip_counts_as_a_fall_and_is_reported(records):
     """A squat statue (never rocks: tan α = 0.83) on a pedestal 0.3 m wide and 1 m tall that
     friction (μs = 0.8) holds, under Takatori scaled to 1 and 4 m/s² PGA: the pedestal passes the

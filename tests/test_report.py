@@ -105,18 +105,30 @@ def test_report_of_an_overturn(overturn_response, tmp_path):
                      r'<td class="result not-checked">not checked</td>', html)
 
 
-def test_a_run_cut_short_while_rocking_is_undetermined(pedestal_response, tmp_path):
-    """With an explicit duration that ends while the statue still rocks, the report must not say
-    that the statue does not overturn (issue 10: a run is not over when the floor stops)."""
-    cut = 0.5 * (pedestal_response.motion.duration + pedestal_response.end_time)
-    r = rk.simulate(_pedestal_system(), rk.Harmonic(amplitude=4.0, frequency=1.5, cycles=3), duration=cut)
-    assert r.status == "still_moving" and r.still_moving
+def test_a_run_cut_short_while_rocking_is_undetermined_unless_it_cannot_fall_any_more(pedestal_response, tmp_path):
+    """With an explicit duration that ends while the statue still rocks under the floor motion, the
+    report must not say that the statue does not overturn (issue 10: a run is not over when the
+    floor stops). Cut after the floor has stopped, halfway to its rest, the statue still rocks but
+    with less energy than it needs to reach α: it cannot fall any more, and the report says so,
+    with that reason (``settled_by_energy``)."""
+    motion = rk.Harmonic(amplitude=4.0, frequency=1.5, cycles=3)
+    during = 0.95 * motion.duration
+    r = rk.simulate(_pedestal_system(), motion, duration=during)
+    assert r.status == "still_moving" and r.still_moving and not r.settled_by_energy
     s = r.summary()
-    assert s["still_moving"] is True and s["verdict"] == f"undetermined: still moving at t = {cut:.3f} s"
+    assert s["still_moving"] is True and s["verdict"] == f"undetermined: still moving at t = {during:.3f} s"
     sentence = verdict(r)
-    assert sentence.startswith(f"Undetermined: the statue is still moving at t = {cut:.2f} s")
-    html = write_report(r, tmp_path, pdf=False).read_text(encoding="utf-8")
+    assert sentence.startswith(f"Undetermined: the statue is still moving at t = {during:.2f} s")
+    html = write_report(r, tmp_path / "during", pdf=False).read_text(encoding="utf-8")
     assert "does not overturn" not in html and escape(sentence) in html
+    after = 0.5 * (pedestal_response.motion.duration + pedestal_response.end_time)
+    r = rk.simulate(_pedestal_system(), motion, duration=after)
+    assert r.status == "still_moving" and r.settled_by_energy and r.summary()["settled_by_energy"] is True
+    sentence = verdict(r)
+    assert sentence.startswith(f"The statue does not overturn: it is still moving at t = {after:.2f} s, when the "
+                               "run ended, but with less energy than the statue needs to overturn")
+    html = write_report(r, tmp_path / "after", pdf=False).read_text(encoding="utf-8")
+    assert escape(sentence) in html and "Undetermined" not in html
 
 
 def test_report_from_a_config_dict(tmp_path):

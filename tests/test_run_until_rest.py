@@ -110,7 +110,8 @@ def test_free_rocking_after_the_motion_ends_at_rest_and_agrees_with_the_integrat
     short = rk.simulate(alone(statue), motion, options=rk.Options(gravity=G, free_time_limit=0.2))
     assert short.status == "still_moving"
     assert short.end_time == pytest.approx(motion.duration + 0.2, abs=1e-12)
-    assert short.summary()["verdict"].startswith("undetermined: still moving")
+    # still rocking when cut, but (as the full run shows) it cannot fall any more: its energy decides it
+    assert short.settled_by_energy and short.summary()["verdict"].startswith("did not overturn; still moving")
 
 
 def test_a_run_ending_before_the_motion_is_undetermined_even_at_rest():
@@ -138,8 +139,13 @@ def test_batch_summaries_carry_still_moving():
     motion = rk.Harmonic(amplitude=4.0, frequency=1.2, cycles=3)
     ds = run_cases([(alone(statue), motion)] * 2, options=OPTS, workers=1)
     assert not ds.still_moving.values.any() and ds.verdict.values[0].startswith("did not overturn")
-    ds = run_cases([(alone(statue), motion)], options=OPTS, duration=motion.duration, workers=1)
+    ds = run_cases([(alone(statue), motion)], options=OPTS, duration=0.9 * motion.duration, workers=1)
     assert ds.still_moving.values.all() and ds.verdict.values[0].startswith("undetermined")
+    assert not ds.settled_by_energy.values.any()
+    # cut as the floor stops, it rocks on with too little energy to overturn (as the full run shows)
+    ds = run_cases([(alone(statue), motion)], options=OPTS, duration=motion.duration, workers=1)
+    assert ds.still_moving.values.all() and ds.settled_by_energy.values.all()
+    assert ds.verdict.values[0].startswith("did not overturn; still moving")
 
 
 # ------------------------------------------------------------------------ bounded resources
@@ -290,7 +296,7 @@ def _abrupt_record(amplitude: float) -> "rk.GroundMotion":
     return GroundMotion(time=t, values=amplitude * np.sin(2 * np.pi * t), name="abrupt")
 
 
-def test_fragility_counts_a_run_still_moving_at_the_cap_as_a_fall():
+def test_fragility_counts_a_run_still_moving_at_the_cap_with_too_little_energy_to_fall_as_a_survival():
     from rocking.analyses.fragility import ida
 
     statue = block(0.25, 1.0, restitution=0.8)  # g·tan α = 2.45 m/s²
@@ -301,8 +307,10 @@ def test_fragility_counts_a_run_still_moving_at_the_cap_as_a_fall():
     assert int(settled.undetermined.sum()) == 0
     cut = ida({"statue": alone(statue)}, {"abrupt": record}, levels, free_time=0.0, options=OPTS, workers=1)
     assert cut.still_moving.all()  # rocking when the record ends, and no free time to settle
-    assert cut.fall.all() and not cut.overturned.any()  # not shown to survive: counted as falls
-    assert int(cut.undetermined.sum()) == len(levels)
+    # but with too little energy left to overturn: shown to survive, as the full runs confirm (a run
+    # still moving with more energy counts as a fall: tests/test_fragility.py)
+    assert cut.settled_by_energy.all() and not cut.fall.any() and not cut.overturned.any()
+    assert int(cut.undetermined.sum()) == 0 and int(cut.settled.sum()) == len(levels)
 
 
 def test_spectrum_counts_runs_still_moving_at_the_cap():
@@ -344,34 +352,71 @@ def test_a_spectrum_never_shows_safe_what_a_longer_run_shows_failing(criterion):
     assert np.all(b_strict <= b_full * (1 + 1e-12))
 
 
-def test_a_block_rocking_with_less_energy_than_its_barrier_is_settled_and_one_above_is_not():
-    """``_below_overturning_energy`` against the barrier computed here: m·g·R·(1 − cos α) of a
-    0.3 × 1.5 m, 2 kg statue, with the ledger's energy W − D_impact − D_friction + balance, and
-    only for a statue inside α where the run ended (past it, V falls and the energy bounds
-    nothing: statues past α at the cut with E < 0 fell later, seen in the test above; one that
-    passed α during the pulse and came back can still settle)."""
-    from rocking.analyses.spectra import _below_overturning_energy
+def _free_rocking(system, energy_over_barrier, theta0, cut=0.06, options=None, duration=None, motion=None):
+    """A statue set rocking at θ0 (rad) away from upright, with the angular velocity that gives it
+    ``energy_over_barrier`` × the overturning barrier (T + V by the closed forms of a block on a
+    fixed corner: V = m·g·(R·cos(α − θ) − h), T = ½·(4/3)·m·R²·θ̇²), on a floor that never moves
+    (a rectangle pulse of zero amplitude, 0.01 s long), cut ``cut`` s later while it still
+    rocks outwards."""
+    st = system.statue
+    g = 9.5
+    m, R, alpha, h = st.mass, math.hypot(st.b, st.h), math.atan2(st.b, st.h), st.h
+    barrier = m * g * (R - h)
+    v0 = m * g * (R * math.cos(alpha - theta0) - h)
+    rate = math.sqrt(max(energy_over_barrier * barrier - v0, 0.0) / (0.5 * 4.0 / 3.0 * m * R * R))
+    opts = options or rk.Options(gravity=g, free_time_limit=cut - 0.01)
+    return rk.simulate(system, motion or rk.RectanglePulse(amplitude=0.0, width=0.01), options=opts,
+                       duration=duration, initial_rotation=theta0, initial_angular_velocity=rate)
+
+
+def test_a_statue_still_rocking_with_less_energy_than_its_barrier_is_settled_and_one_above_is_not():
+    """The solver's rule (``settled_by_energy``, slot ``S_SETTLED``) against the barrier
+    m·g·R·(1 − cos α) written here. A 0.3 × 1.5 m, 2 kg statue rocks freely (g = 9.5) with
+    energy 1e-7 below or above its barrier, cut 0.06 s later, far inside α: settled just below,
+    not just above (the run's ledger error, ~1e-12 of the energy, is far inside 1e-7). Past α
+    (θ0 = 1.001 α, at rest: E is below the barrier, but its weight now works for it) it is not;
+    nor is it while the floor motion has not ended (a zero rectangle pulse 1 s long, cut at
+    0.06 s: the floor may yet give it energy; a record cut from a longer one by ``trimmed``,
+    whose floor goes on in the real record), nor under the paper's impact law (Eq. 1) on a
+    pedestal that slides, which can add energy at an impact; on a statue that cannot slide,
+    Eq. 1 only takes energy, and the rule holds."""
     from rocking.solver import compiled as C
 
     statue = rk.Statue(width=0.3, height=1.5, mass=2.0)
     alpha = math.atan(0.2)
-    barrier = 2.0 * 9.5 * math.hypot(0.15, 0.75) * (1.0 - math.cos(alpha))
-    raw = np.full(C.N_SUMMARY, np.nan)
-    for w, d_imp, d_fr, bal, theta, below in [
-        (barrier + 1.0, 1.0, 0.0, 0.0, 0.1, False), (barrier + 1.0, 0.5, 0.5, 1e-9, 0.1, False),
-        (barrier + 1.0, 0.6, 0.5, 0.0, 0.1, True), (barrier, 0.0, 0.0, -1e-9, 0.1, True),
-        (barrier + 1.0, 1.0, 1e-9, 0.0, 0.1, True), (barrier, 1e-9, 0.0, 2e-9, 0.1, False),
-        (0.0, 1.0, 0.0, 0.0, alpha * (1 - 1e-12), True), (0.0, 1.0, 0.0, 0.0, alpha, False),
-        (0.0, 1.0, 0.0, 0.0, -alpha * (1 - 1e-12), True), (0.0, 1.0, 0.0, 0.0, -alpha, False),
-        (-1.0, 0.0, 0.0, 0.0, -1.3, False),
-    ]:
-        raw[[C.S_W_INPUT, C.S_D_IMPACT, C.S_D_FRICTION, C.S_BALANCE, C.S_THETA_END]] = w, d_imp, d_fr, bal, theta
-        assert _below_overturning_energy(rk.System(statue=statue), raw, 9.5) is below, (w, d_imp, d_fr, bal, theta)
-    # the slot holds θ where the run ended: a statue cut while rocking, its last sample at the cut
-    cut = rk.simulate(rk.System(statue=statue), rk.SinePulse(amplitude=4.0, frequency=1.5), options=OPTS,
-                      duration=0.5)
-    assert cut.summary()["still_moving"] and abs(cut.theta[-1]) > 1e-3 and cut.t[-1] == pytest.approx(0.5, abs=1e-12)
-    assert cut.raw_summary[C.S_THETA_END] == pytest.approx(cut.theta[-1], rel=1e-12)  # (dense output: 1 ulp)
+    below = _free_rocking(rk.System(statue=statue), 1 - 1e-7, 0.3 * alpha)
+    above = _free_rocking(rk.System(statue=statue), 1 + 1e-7, 0.3 * alpha)
+    for r, settled in ((below, True), (above, False)):
+        assert r.status == "still_moving" and 0.3 * alpha < r.theta[-1] < 0.5 * alpha
+        assert r.t[-1] == pytest.approx(0.06, abs=1e-12)
+        assert r.settled_by_energy is settled and r.summary()["settled_by_energy"] is settled
+        assert r.raw_summary[C.S_SETTLED] == float(settled)
+    assert below.verdict == ("did not overturn; still moving at t = 0.060 s, with less energy than the statue "
+                             "needs to overturn, on a floor that has stopped")
+    assert not any("still moving" in w for w in below.warnings)
+    assert above.verdict == "undetermined: still moving at t = 0.060 s"
+    past = _free_rocking(rk.System(statue=statue), 0.0, 1.001 * alpha)
+    assert past.status == "still_moving" and past.theta[-1] > alpha and not past.settled_by_energy
+    moving_floor = _free_rocking(rk.System(statue=statue), 0.5, 0.3 * alpha, duration=0.06,
+                                 motion=rk.RectanglePulse(amplitude=0.0, width=1.0))
+    assert moving_floor.status == "still_moving" and not moving_floor.settled_by_energy
+    stopped_floor = _free_rocking(rk.System(statue=statue), 0.5, 0.3 * alpha, duration=0.06)
+    assert stopped_floor.status == "still_moving" and stopped_floor.settled_by_energy
+    # a record whose floor stops after 0.01 s, and the same samples cut from a longer record by
+    # ``trimmed``: a window, whose floor goes on in the real record
+    from rocking.excitation.record import GroundMotion
+
+    window = GroundMotion(time=np.linspace(0.0, 1.0, 101), values=np.zeros(101), name="still").trimmed(0.01)
+    whole = GroundMotion(time=window.time, values=window.values, name="still")
+    for motion, settled in ((whole, True), (window, False)):
+        r = _free_rocking(rk.System(statue=statue), 0.5, 0.3 * alpha, motion=motion)
+        assert r.status == "still_moving" and r.settled_by_energy is settled
+    sliding = rk.System(statue=statue, pedestal=rk.Pedestal(mass=5.0, friction=rk.Friction(static=0.3, kinetic=0.2)))
+    held = rk.System(statue=statue)  # on the floor, which it never slides on (no friction given)
+    for system, impact, settled in ((sliding, "coulomb", True), (sliding, "paper", False), (held, "paper", True)):
+        r = _free_rocking(system, 0.5, 0.3 * alpha, options=rk.Options(gravity=9.5, free_time_limit=0.05,
+                                                                      impact=impact))
+        assert r.status == "still_moving" and r.settled_by_energy is settled, (impact, system.floor_friction)
 
 
 def _falling_floor(ah, t_drop=1.0, ramp=0.01, depth=1.5, end=2.0):

@@ -466,9 +466,10 @@ def test_a_pedestal_that_would_tip_fails_even_where_the_statue_cannot_fall_any_m
     """A run still moving at its cap with too little energy for the statue to fall is decided
     safe (``settling_runs``), but not where the pedestal would have tipped on the way: that is a
     fall risk the two-body model does not follow, failing under every criterion whatever the
-    statue's energy (a solver summary made up here: still moving, the uplift at 0.5 s, the energy
-    a tenth of the barrier, θ = 0.01 rad where it ended). Without the uplift the same summary is
-    settled."""
+    statue's energy (a solver summary made up here: still moving, the uplift at 0.5 s, settled by
+    the solver's energy rule). Without the uplift the same summary is settled. Under "exceed" a
+    settled run that had passed α before (``S_EXCEED_TIME``) still fails: the energy rule says
+    only that it cannot reach α again."""
     import dataclasses as dc
 
     from rocking.analyses import batch
@@ -477,15 +478,17 @@ def test_a_pedestal_that_would_tip_fails_even_where_the_statue_cannot_fall_any_m
 
     statue = rk.Statue(width=0.4, height=2.0, mass=10.0)
     pedestal = rk.Pedestal(mass=50.0, friction=rk.Friction(static=0.8, kinetic=0.7), width=0.3, height=1.0)
-    barrier = 10.0 * G * statue.semi_diagonal * (1.0 - math.cos(statue.slenderness))
     raw = np.full(C.N_SUMMARY, np.nan)
-    raw[[C.S_STATUS, C.S_IMPACTS, C.S_W_INPUT, C.S_D_IMPACT, C.S_D_FRICTION, C.S_BALANCE, C.S_THETA_END]] = (
-        C.STATUS_STILL_MOVING, 3, 0.3 * barrier, 0.2 * barrier, 0.0, 0.0, 0.01)
+    raw[[C.S_STATUS, C.S_IMPACTS, C.S_SETTLED]] = C.STATUS_STILL_MOVING, 3, 1.0
     # counted: the run (0), still moving (2) and the pedestal tipping (4); or the run and settled (7)
-    for uplift, fails, counted in ((0.5, True, [1, 0, 1, 0, 1, 0, 0, 0]), (math.nan, False, [1, 0, 0, 0, 0, 0, 0, 1])):
-        raw[C.S_UPLIFT] = uplift
+    tipping, settled = [1, 0, 1, 0, 1, 0, 0, 0], [1, 0, 0, 0, 0, 0, 0, 1]
+    for uplift, exceeded, criterion, fails, counted in (
+            (0.5, math.nan, "overturn", True, tipping), (math.nan, math.nan, "overturn", False, settled),
+            (math.nan, 0.7, "overturn", False, settled), (math.nan, 0.7, "exceed", True, settled),
+            (math.nan, math.nan, "exceed", False, settled), (math.nan, 0.7, "no_impact", False, settled)):
+        raw[C.S_UPLIFT], raw[C.S_EXCEED_TIME] = uplift, exceeded
         monkeypatch.setattr(batch, "run_raw", lambda *a, raw=raw.copy(): raw)
-        task = SpectrumTask(rk.System(statue=statue, pedestal=pedestal), "sine", (2.0,), (2.0,), 1e-3, "overturn",
+        task = SpectrumTask(rk.System(statue=statue, pedestal=pedestal), "sine", (2.0,), (2.0,), 1e-3, criterion,
                             "onset", 3.0, 25.0, OPTS)
         counter = [0] * 8
         assert _fails(task, 2.0, 2.0, G * 0.2, 2.0, counter, dc.replace(OPTS, free_time_limit=10.0)) is fails

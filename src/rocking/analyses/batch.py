@@ -35,7 +35,7 @@ Case = tuple[System | Stack, AbstractMotion]
 # -- stacks: the summary as a flat vector -----------------------------------------------------
 #: Layout of a stack's raw summary: these run-wide fields, then ``STACK_BLOCK_FIELDS`` of every
 #: block from the floor up, then ``STACK_INTERFACE_FIELDS`` of every interface (floor first).
-STACK_RUN_FIELDS = ("status", "end_time", "impacts", "energy_balance_error", "last_event_block")
+STACK_RUN_FIELDS = ("status", "end_time", "impacts", "energy_balance_error", "last_event_block", "settled_by_energy")
 STACK_BLOCK_FIELDS = ("overturned", "overturn_time", "peak_rotation", "peak_absolute_rotation", "peak_sliding",
                       "residual_sliding", "lifted_off_time", "first_rocking_time", "first_sliding_time",
                       "tension_held_time", "past_edge_time", "restitution_reduced_time")
@@ -65,7 +65,7 @@ def stack_raw(response: Any) -> np.ndarray:
     summary = response.summary()
     last = float(response.events[-1, 1]) if len(response.events) else math.nan
     head = [float(STATUS_NAMES.index(summary["status"])), summary["end_time"], summary["impacts"],
-            summary["energy_balance_error"], last]
+            summary["energy_balance_error"], last, float(summary["settled_by_energy"])]
     blocks = [_number(b[k]) for b in summary["blocks"] for k in STACK_BLOCK_FIELDS]
     faces = [_number(f[k]) for f in summary["interfaces"] for k in STACK_INTERFACE_FIELDS]
     return np.array(head + blocks + faces, dtype=float)
@@ -99,11 +99,13 @@ def stack_summary_values(raw: np.ndarray, stack: Stack) -> dict[str, Any]:
     end_time = float(raw[1])
     # the verdict is the engine's own rule, applied to the unpacked blocks (and the last event's block)
     events = np.empty((0, 3)) if math.isnan(raw[4]) else np.array([[math.nan, raw[4], math.nan]])
+    settled = bool(raw[5] == 1.0)
     verdict = StackResponse.verdict.fget(SimpleNamespace(blocks=blocks, status=status, end_time=end_time,
-                                                         events=events, stack=stack))
+                                                         events=events, stack=stack, settled_by_energy=settled))
     out = {key: blocks[-1][key] for key in _STACK_TOP_KEYS}
     out.update(impacts=int(raw[2]), energy_balance_error=float(raw[3]), status=status, end_time=end_time,
-               still_moving=status == "still_moving", verdict=verdict, blocks=blocks, interfaces=faces)
+               still_moving=status == "still_moving", settled_by_energy=settled, verdict=verdict, blocks=blocks,
+               interfaces=faces)
     return out
 
 
@@ -307,16 +309,7 @@ def summaries_dataset(raw: np.ndarray, alphas: np.ndarray, *, dims: tuple[str, .
     rows = [summary_values(r, a) for r, a in zip(raw, alphas)]
     data = {}
     for key in SUMMARY_FIELDS:
-        values = [row[key] for row in rows]
-        if key in ("overturned", "still_moving"):
-            arr = np.array(values, dtype=bool)
-        elif key == "impacts":
-            arr = np.array(values, dtype=np.int64)
-        elif key in ("status", "verdict"):
-            arr = np.array(values, dtype=str)
-        else:
-            arr = np.array([np.nan if v is None else v for v in values], dtype=float)
-        data[key] = (dims, arr.reshape(shape))
+        data[key] = (dims, _column(key, [row[key] for row in rows]).reshape(shape))
     ds = xr.Dataset(data, coords=coords or {})
     units = {"overturn_time": "s", "exceeded_alpha_time": "s", "peak_rotation": "rad", "peak_sliding": "m",
              "residual_sliding": "m", "first_rocking_time": "s", "first_sliding_time": "s", "end_time": "s",
@@ -387,7 +380,7 @@ def specs_dataset(raw: np.ndarray, specs: Sequence[System | Stack], *, dims: tup
 
 def _column(key: str, values: list) -> np.ndarray:
     """One summary field of many runs as an array of its type (None → NaN for numbers)."""
-    if key in ("overturned", "still_moving"):
+    if key in ("overturned", "still_moving", "settled_by_energy"):
         return np.array(values, dtype=bool)
     if key == "impacts":
         return np.array(values, dtype=np.int64)

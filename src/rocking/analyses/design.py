@@ -173,21 +173,33 @@ def _two_face_band(s: float, *, top_slips: bool = True) -> str:
 
 
 # why a run that did not overturn may still not prove that the statue stands
-_UNDETERMINED_WHY = "still moving at the end, a body lifting off, or the run stopped"
+_UNDETERMINED_WHY = ("still moving at the end with energy enough to overturn, a body lifting off, or the run "
+                     "stopped")
 
 
 def run_undetermined(ds) -> np.ndarray:
     """Per run of a summaries Dataset: True where the statue did not overturn, yet the run does not
     prove that it stands: the statue is still moving at the end (``still_moving``, when the
     summaries carry it), the run stopped early, or a body would have left its support while the
-    statue stood (``"lifted_off"``): any status but ``"completed"``."""
+    statue stood (``"lifted_off"``): any status but ``"completed"``. A run still moving whose
+    statue can no longer overturn (``settled_by_energy``: too little energy left on a floor that
+    has stopped) proves it as a run at rest does."""
     over = np.asarray(ds.overturned.values, dtype=bool)
     unproven = np.asarray(ds.status.values).astype(str) != "completed"
     moving = ds.get("still_moving")
     if moving is not None:
         m = np.asarray(moving.values)
         unproven = unproven | (np.nan_to_num(m.astype(float)) != 0)
-    return ~over & unproven
+    return ~over & unproven & ~_settled(ds)
+
+
+def _settled(ds) -> np.ndarray:
+    """``settled_by_energy`` of a summaries Dataset as booleans (False where it is missing: the
+    summaries of an older study)."""
+    settled = ds.get("settled_by_energy")
+    if settled is None:
+        return np.zeros(np.shape(ds.overturned.values), dtype=bool)
+    return np.nan_to_num(np.asarray(settled.values).astype(float)) != 0
 
 
 def _mm(x: float) -> str:
@@ -219,7 +231,8 @@ def ranking_rule(friction_scatter: float, objective: str = "mean", *, two_face: 
     if two_face:
         band = _two_face_band(s, top_slips=top_slips) if s > 0 else "at the nominal friction"
         return (f"safety first: a candidate is safe if, under every motion {band}, no block falls, none slides to "
-                f"the edge of the block below and every run ends at rest; among the safe candidates that meet the "
+                f"the edge of the block below and every run ends at rest (or with too little energy left to "
+                f"overturn); among the safe candidates that meet the "
                 f"limits, the smallest {objective} peak θ/α, the least free space on the floor, then the smaller "
                 f"floor μs, the lighter pedestal, the smaller top μs, the narrower pedestal; if no safe candidate "
                 f"meets the limits, the safe one needing the least free space (among those within the limit on the "
@@ -343,7 +356,8 @@ def choose_design(
         Motion names.
     falls, undetermined : bool arrays (μs, mass, motion)
         The statue overturns at some friction level of the scatter band; or, without a fall,
-        some level leaves it still moving at the end (or the run stopped early).
+        some level leaves it still moving at the end with energy enough to overturn (or the run
+        stopped early).
     clearance : array (μs, mass, motion)
         Largest peak sliding of the pedestal over the friction levels, m.
     residual, top_friction, score : arrays (μs, mass)
@@ -770,7 +784,7 @@ def friction_design(
     tips = np.isfinite(every.pedestal_uplift_time.values) & ~over
     ds["scatter_overturned"] = (run_dims, over)
     ds["scatter_undetermined"] = (run_dims, undetermined, {
-        "long_name": f"statue neither overturned nor proven at rest ({_UNDETERMINED_WHY})"})
+        "long_name": f"statue neither overturned nor proven safe ({_UNDETERMINED_WHY})"})
     ds["scatter_peak_rotation_over_alpha"] = (run_dims, rot)
     ds["scatter_peak_sliding"] = (run_dims, slide, {"units": "m"})
     ds["scatter_residual_sliding"] = (run_dims, every.residual_sliding.values, {"units": "m"})
@@ -1007,7 +1021,8 @@ def two_face_design(
     Safety (:func:`choose_design`): a candidate is safe if, under every motion at every level, no
     block overturns (sliding off counts), no block reaches the edge of the one below when
     ``options.stop_at_edge`` asks the runs to stop there (status ``slid_past_edge``: a fall risk,
-    named as such) and every run ends at rest. Then the
+    named as such) and every run ends at rest (or still moving with too little energy left for any
+    block to overturn, ``settled_by_energy``). Then the
     limits: ``sliding_limit`` and ``residual_limit`` on the pedestal's sliding on the floor (the
     free space it needs), ``top_friction_limit`` (if given) on the friction the top face must
     supply, and ``top_sliding_limit`` on the statue's peak slide on the top face (by default half
@@ -1144,7 +1159,7 @@ def two_face_design(
     status = every.status.values.astype(str)
     over = every.block_overturned.any("block").values | (status == "overturned")
     slid = (status == "slid_past_edge") & ~over
-    unproven = (status != "completed") | every.still_moving.values
+    unproven = ((status != "completed") | every.still_moving.values) & ~_settled(every)
     undetermined = ~over & ~slid & unproven
     rot = np.where(over, math.pi / (2.0 * alpha), every.peak_rotation_over_alpha.values)
     floor_slide = every.block_peak_sliding.isel(block=0).values
@@ -1156,7 +1171,8 @@ def two_face_design(
     ds["scatter_overturned"] = (run_dims, over, {"long_name": "a block overturned"})
     ds["scatter_slid_off"] = (run_dims, slid, {"long_name": "a block slid to the edge of the one below (stopped)"})
     ds["scatter_undetermined"] = (run_dims, undetermined, {
-        "long_name": "nothing fell nor slid off, but the run did not end at rest (still moving, or it stopped)"})
+        "long_name": ("nothing fell nor slid off, but the run did not end at rest (still moving with energy enough "
+                      "to overturn, or it stopped)")})
     ds["scatter_peak_rotation_over_alpha"] = (run_dims, rot)
     ds["scatter_peak_sliding"] = (run_dims, floor_slide, {"units": "m"})
     ds["scatter_floor_sliding"] = (run_dims, floor_slide, {"units": "m", "long_name": "pedestal on the floor"})
@@ -1238,7 +1254,8 @@ def two_face_design(
                      f"Which face does the work, for {which} (largest over the {over_what}): {work}.")
         choice = dataclasses.replace(choice, lines=tuple(lines))
     ds["safe"] = (cand, choice.safe, {
-        "long_name": "nothing falls or slides off, and every run ends at rest, under every motion at every level"})
+        "long_name": ("nothing falls or slides off, and every run ends at rest (or with too little energy left to "
+                      "overturn), under every motion at every level")})
     ds["feasible"] = (cand, choice.feasible, {
         "long_name": "meets the sliding, residual, top-friction and top-sliding limits"})
     ds["inverted"] = (("mu_s",), choice.inverted, {

@@ -143,7 +143,9 @@ def ida(
         A run still moving at the free-motion cap (``still_moving``), or stopped by the solver
         before a verdict (``max_events``, ``inconsistent``, …), is not shown to survive: it counts
         as a fall and an exceedance (conservative); ``undetermined`` counts both kinds and
-        ``solver_stopped`` the second.
+        ``solver_stopped`` the second. A run still moving whose statue can no longer overturn
+        (``settled_by_energy``: less energy left than it needs to reach α, on a floor that has
+        stopped) is no fall, counted in ``settled``.
         For a stack, any block that overturns (or slides off the one below) is a fall, and so,
         with ``options.stop_at_edge``, is a block that reaches the edge of the one below (status
         ``slid_past_edge``: the run stops there), counted in ``slid_off``. A statue that stands on
@@ -199,11 +201,17 @@ def ida(
     # where its width and height are given) is a fall risk the two-body model does not follow.
     tips = ds["pedestal_uplift_time"].notnull() & ~ds["overturned"]
     # a stack stops when any of its blocks overturns (status "overturned"), the statue or not
-    ds["fall"] = ds["overturned"] | (ds["status"] == "overturned") | ds["still_moving"] | slid_off | stopped | tips
+    # still moving at the cap, unless the statue can no longer overturn (too little energy left on
+    # a floor that has stopped: results.response.settled_by_energy)
+    moving = ds["still_moving"] & ~ds["settled_by_energy"]
+    ds["fall"] = ds["overturned"] | (ds["status"] == "overturned") | moving | slid_off | stopped | tips
     ds["exceed"] = ds["fall"] | (ds["peak_rotation_over_alpha"] >= 1.0)
-    ds["undetermined"] = (ds["still_moving"] | stopped).sum(dim=("record", "level"))
+    ds["undetermined"] = (moving | stopped).sum(dim=("record", "level"))
     ds["undetermined"].attrs["long_name"] = ("runs still moving at the free-motion cap or stopped by the solver "
                                              "(counted as falls)")
+    ds["settled"] = (ds["still_moving"] & ds["settled_by_energy"]).sum(dim=("record", "level"))
+    ds["settled"].attrs["long_name"] = ("runs still moving at the free-motion cap whose statue can no longer "
+                                        "overturn (too little energy left; counted as survivals)")
     ds["solver_stopped"] = stopped.sum(dim=("record", "level"))
     ds["solver_stopped"].attrs["long_name"] = "runs the solver stopped before a verdict (counted as falls)"
     ds["slid_off"] = slid_off.sum(dim=("record", "level"))
@@ -605,6 +613,11 @@ def fragility_report_lines(curves, runs, *, free_time: float, charts: Sequence[s
     if moving:
         lines += [f"**{moving} run(s) were still moving {free_time:g} s after their record ended: "
                   "undetermined, counted as falls.** Raise fragility.free_time to decide them.", ""]
+    settled = int(runs.settled.sum()) if "settled" in runs else 0
+    if settled:
+        lines += [f"{settled} run(s) were still moving {free_time:g} s after their record ended, with less energy "
+                  "than the statue needs to overturn on a floor that has stopped: it cannot fall any more, so "
+                  "they count as survivals.", ""]
     if stopped:
         lines += [f"**{stopped} run(s) were stopped by the solver before a verdict (too many events, or no "
                   "consistent contact mode): undetermined, counted as falls.** Their statuses are in the "

@@ -21,7 +21,8 @@ The motions, for an amplitude a_p = A·g·tan α and a circular frequency ω_p =
 Every run lasts the motion, then goes on with the floor still until the block is at rest or
 falls, for at most ``free_time``/p (25 by default). A statue still rocking at that cap with less
 energy than it needs to overturn (T + V < m₂·g·R·(1 − cos α) on the still floor, where the energy
-can only fall) cannot fall: it counts as safe, in ``settling_runs`` (a slender block rocking down
+can only fall) cannot fall: it counts as safe, in ``settling_runs`` (under ``"exceed"`` only if
+it never passed α; the solver decides it, ``results.response.settled_by_energy``; a slender block rocking down
 from near its overturn takes ~50/p and ~220 impacts to come to rest under Housner's
 restitution). The same holds for a one-block stack; a taller stack has no such bound here. Any
 other run still moving at the cap is undetermined, counted in
@@ -182,11 +183,12 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
         counter[1] += 1
         return _undecided(task, task.criterion == "no_impact" and impacted)
     moving = status == C.STATUS_STILL_MOVING
-    if moving and math.isnan(raw[C.S_UPLIFT]) and _below_overturning_energy(task.system, raw, options.gravity):
-        # it rocks on, but cannot fall (nor reach α): decided, safe (a pedestal that would have
-        # tipped is a fall risk whatever the energy: below)
+    if moving and math.isnan(raw[C.S_UPLIFT]) and raw[C.S_SETTLED] == 1.0:
+        # it rocks on, but cannot fall (nor reach α again): decided, safe, unless α was passed
+        # before, which fails "exceed" whatever follows (a pedestal that would have tipped is a
+        # fall risk whatever the energy: below)
         counter[7] += 1
-        return False
+        return task.criterion == "exceed" and not math.isnan(raw[C.S_EXCEED_TIME])
     if moving:
         counter[2] += 1
     if status != C.STATUS_OVERTURNED and not math.isnan(raw[C.S_UPLIFT]):
@@ -202,39 +204,6 @@ def _fails(task: SpectrumTask, A: float, beta: float, g_tan_alpha: float, p: flo
     if task.criterion == "no_impact":
         return overturned and not impacted
     return overturned
-
-
-def _cannot_overturn(width: float, height: float, mass: float, gravity: float, energy: float, theta: float) -> bool:
-    """Can a block left rocking on a still floor, at θ (rad) with energy E above its rest (J, an
-    upper bound), no longer fall? On a still floor the energy only falls (friction and every impact
-    dissipate). Inside its barrier (|θ| < α) with E below m·g·(R − h), the rise of its centre from
-    flat to balanced on a corner (= m·g·R·(1 − cos α), Eqs. 16–17's V at α), it never reaches ±α:
-    a block turned to ±α has a corner R below its centre, whether it touches the floor or flies.
-    Past α, V falls, and no energy bounds the fall."""
-    alpha = math.atan2(width, height)
-    barrier = mass * gravity * (0.5 * math.hypot(width, height) - 0.5 * height)
-    return bool(abs(theta) < alpha and energy < barrier)
-
-
-def _below_overturning_energy(system: System, raw: np.ndarray, gravity: float) -> bool:
-    """:func:`_cannot_overturn` for the statue of a run still moving at its cap (its floor is still
-    by then: the cap is free motion after the pulse). The run started from rest (E = 0), so by the
-    ledger E ≤ W − D_impact − D_friction + its balance error; θ is where the run ended."""
-    statue = system.statue
-    energy = raw[C.S_W_INPUT] - raw[C.S_D_IMPACT] - raw[C.S_D_FRICTION] + raw[C.S_BALANCE]
-    return _cannot_overturn(statue.width, statue.height, statue.mass, gravity, energy, raw[C.S_THETA_END])
-
-
-def _one_block_below_overturning_energy(response: Any, gravity: float) -> bool:
-    """:func:`_cannot_overturn` for a one-block stack: E − E₀ plus the ledger's largest error, and
-    its rotation on the floor where the run ended. (For taller stacks the least energy of a fall
-    is not so easily bounded: they stay undetermined.)"""
-    stack = response.stack
-    if stack.n != 1:
-        return False
-    block = stack.blocks[0]
-    energy = float(response.energy[-1] - response.initial_energy) + float(np.max(np.abs(response.balance_error())))
-    return _cannot_overturn(block.width, block.height, block.mass, gravity, energy, response.rotation[-1, 0])
 
 
 _STACK_SOLVER_FAILURES = ("inconsistent", "step_failed", "max_events", "lost_contact", "friction_gained")
@@ -259,9 +228,9 @@ def _stack_fails(task: SpectrumTask, motion: Any, counter: list[int], options: O
         counter[1] += 1
         return _undecided(task, task.criterion == "no_impact" and impacted)
     moving = status == "still_moving"
-    if moving and _one_block_below_overturning_energy(response, options.gravity):
-        counter[7] += 1
-        return False
+    if moving and response.settled_by_energy:
+        counter[7] += 1  # as in _fails: α passed before still fails "exceed"
+        return task.criterion == "exceed" and summary["peak_rotation"] >= stack_alpha(task.system)
     if moving:
         counter[2] += 1
     if status == "slid_past_edge":

@@ -539,6 +539,7 @@ def run_stored(
     carries only the motions its runs use (a record is sent once per chunk, not once per run).
     With ``folder`` the study resumes where it stopped; see :class:`ChunkStore`.
     """
+    from ..solver.compiled import N_SUMMARY
     from .batch import STACK_BLOCK_FIELDS, STACK_INTERFACE_FIELDS, STACK_RUN_FIELDS, pad_rows, spec_kind
 
     runs = list(runs)
@@ -558,6 +559,7 @@ def run_stored(
         fp = fingerprint({"study": study, "runs": runs, "motions": dict(motions), "options": options,
                           "chunk_size": size, "version": _version(),
                           # a store written with another layout of the raw rows is not resumed
+                          "summary_width": N_SUMMARY,
                           "stack_layout": (STACK_RUN_FIELDS, STACK_BLOCK_FIELDS, STACK_INTERFACE_FIELDS)})
         store = ChunkStore(folder, study=study, fingerprint=fp, n_chunks=len(payloads), meta=meta, fresh=fresh)
     parts = run_chunks(_run_runs, payloads, store=store, workers=workers, sizes=[len(r) for r in pieces],

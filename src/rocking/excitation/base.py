@@ -18,7 +18,8 @@ import numpy as np
 
 # Signal kinds understood by the compiled evaluator (rocking.excitation.signal).
 KIND_ZERO = -1  #: no motion
-KIND_SAMPLED = 0  #: piecewise linear through samples (t_i, a_i); zero outside [t_0, t_n]
+KIND_SAMPLED = 0  #: piecewise linear through samples (t_i, a_i); zero outside [t_0, t_n];
+#: params[3] = inf for a window cut from a longer record (its floor goes on after t_n), else 0
 KIND_HARMONIC = 1  #: A·cos(ω t + φ) for 0 ≤ t ≤ t_end, else 0;   params = (A, ω, φ, t_end)
 KIND_SINE_PULSE = 2  #: a_p·sin(ω t + ψ) for 0 ≤ t ≤ (2π − ψ)/ω; params = (a_p, ω, ψ, t_end)
 KIND_RECTANGLE = 3  #: a for 0 ≤ t < t_d;                        params = (a, t_d, 0, t_d)

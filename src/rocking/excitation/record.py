@@ -223,10 +223,19 @@ class GroundMotion(AbstractMotion):
         """
         return Signal(
             KIND_SAMPLED,
-            np.zeros(N_PARAMS),
+            self._window_params(),
             np.ascontiguousarray(self.time, dtype=np.float64).copy(),
             np.ascontiguousarray(self.values, dtype=np.float64).copy(),
         )
+
+    def _window_params(self) -> np.ndarray:
+        """A sampled signal's params: params[3] = inf for a record cut by :meth:`trimmed`, whose
+        floor goes on after its last sample in the real record (no claim may rest on it stopping
+        there: :func:`rocking.excitation.signal.signal_end`), else 0."""
+        params = np.zeros(N_PARAMS)
+        if "trimmed_at" in self.meta:
+            params[3] = math.inf
+        return params
 
     def vertical_signal(self) -> Signal:
         """The vertical history as a ``KIND_SAMPLED`` signal, or ``ZERO_SIGNAL``."""
@@ -234,7 +243,7 @@ class GroundMotion(AbstractMotion):
             return ZERO_SIGNAL
         return Signal(
             KIND_SAMPLED,
-            np.zeros(N_PARAMS),
+            self._window_params(),
             np.ascontiguousarray(self.time, dtype=np.float64).copy(),
             np.ascontiguousarray(self.vertical, dtype=np.float64).copy(),
         )
@@ -292,7 +301,9 @@ class GroundMotion(AbstractMotion):
         """Return the motion cut at ``t_end`` (s), unchanged on ``[time[0], t_end]``.
 
         If ``t_end`` falls between two samples, a sample interpolated at ``t_end`` is
-        added so the history up to the cut is preserved exactly.
+        added so the history up to the cut is preserved exactly. The cut record is a window of
+        this one (``meta["trimmed_at"]``): a run still moving after it is not decided by its
+        energy, since in the real record the floor goes on (docs/verdicts.md).
         """
         t_end = float(t_end)
         if not math.isfinite(t_end) or t_end <= self.time[0]:

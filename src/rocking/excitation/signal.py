@@ -23,6 +23,7 @@ from .base import (
     KIND_RICKER,
     KIND_SAMPLED,
     KIND_SINE_PULSE,
+    KIND_ZERO,
 )
 
 
@@ -51,6 +52,18 @@ def evaluate(kind, params, times, values, t, piece):
     if kind == KIND_RAMP:
         return params[0] * t
     return 0.0
+
+
+@njit(cache=True)
+def signal_end(kind, params, times):
+    """The time (s) after which the signal is zero for good: a record's last sample (inf for a
+    window cut from a longer record, ``params[3]``), the end of a parametric motion
+    (``params[3]``, inf for one that never ends), −inf for no motion."""
+    if kind == KIND_SAMPLED:
+        return max(times[times.shape[0] - 1], params[3])
+    if kind == KIND_ZERO:
+        return -math.inf
+    return params[3]
 
 
 # Local forms: inside one integration step a signal is one smooth formula, so its coefficients

@@ -193,6 +193,15 @@ def mechanical_energy(p, s, u_dot, theta, theta_dot):
 
 
 @njit(cache=True)
+def overturning_barrier(p):
+    """The least energy (J, relative to the system at rest with the statue upright) with which the
+    statue can reach its tipping angle ±α: m2·g·R·(1 − cos α), Eqs. 16–17's V at θ = ±α. Turned to
+    ±α, the statue has a corner R below its centre whatever else moves, so with less energy than
+    this, and no energy coming in, it never gets there."""
+    return p[M2] * p[R] * p[G] * (1.0 - math.cos(p[ALPHA]))
+
+
+@njit(cache=True)
 def kinetic_energy(p, s, u_dot, theta, theta_dot):
     """T relative to the floor, J."""
     if s == 0:

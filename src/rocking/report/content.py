@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 from ..models.regimes import Regime
-from ..results.response import IMPACT_BEYOND_FRICTION, LIFTED_OFF
+from ..results.response import IMPACT_BEYOND_FRICTION, LIFTED_OFF, SETTLED_TEXT
 from ..results.wording import need_text
 
 Rows = list[tuple[str, str]]
@@ -163,6 +163,9 @@ def verdict(response) -> str:
         body = f"{rock} and does not slide"
     else:
         body = f"{rock} and " + amount if rocks else f"it does not rock but {amount}"
+    if s["still_moving"] and s["settled_by_energy"]:
+        return (f"The statue does not overturn: it is still moving at t = {s['end_time']:.2f} s, when the run "
+                f"ended, but {SETTLED_TEXT}, so it cannot fall any more; {body}.")
     if s["still_moving"]:
         return (
             f"Undetermined: the statue is still moving at t = {s['end_time']:.2f} s, when the run ended "
@@ -491,7 +494,8 @@ def sliding_check(subject: str, what: str, peak: float, clearance: float | None,
 
 
 def _rest_check(s: Mapping[str, Any]) -> Check:
-    name, limit = "run ends at rest (a verdict, not undetermined)", "at rest after the floor motion"
+    name, limit = "run ends at rest (a verdict, not undetermined)", ("at rest after the floor motion, or too little "
+                                                                    "energy left to overturn")
     if s["overturned"]:
         return Check(name, f"ended by the overturn at t = {s['overturn_time']:.2f} s", limit, NOT_APPLICABLE)
     # the model's warnings already say why a run is undetermined: no second warning here

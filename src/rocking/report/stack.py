@@ -73,7 +73,7 @@ def _edge_block(response: Any) -> int | None:
 
 
 def _undetermined(response: Any) -> bool:
-    return not _fallen(response) and response.status != "completed"
+    return not _fallen(response) and response.status != "completed" and not response.settled_by_energy
 
 
 # ----------------------------------------------------------------------------------- verdict
@@ -119,6 +119,10 @@ def stack_verdict(response: Any) -> str:
         return (f"Undetermined: {block_label(stack, edge)} slid to the edge of {_below(stack, edge)} at "
                 f"t = {end:.2f} s, where the model stops (treat it as falling off); until then no block overturned.")
     body = _motion_words(response)
+    if response.status == "still_moving" and response.settled_by_energy:
+        return (f"No block overturns: the block is still moving at t = {end:.2f} s, when the run ended, but with "
+                f"less energy than it needs to overturn, on a floor that has stopped, so it cannot fall any more; "
+                f"{body}.")
     if response.status == "still_moving":
         return (f"Undetermined: the stack is still moving at t = {end:.2f} s, when the run ended (raise "
                 f"simulation.free_time_limit or simulation.duration for a verdict); until then no block "
@@ -202,7 +206,8 @@ def _friction_check(response: Any, k: int, summary_interface: Mapping[str, Any])
 
 
 def _rest_check(response: Any) -> Check:
-    name, limit = "run ends at rest (a verdict, not undetermined)", "at rest after the floor motion"
+    name, limit = "run ends at rest (a verdict, not undetermined)", ("at rest after the floor motion, or too little "
+                                                                    "energy left to overturn")
     fallen = _fallen(response)
     if fallen:
         return Check(name, f"ended by the overturn at t = {fallen[0][0]:.2f} s", limit, NOT_APPLICABLE)
@@ -234,7 +239,7 @@ def stack_checks(response: Any, clearance: float | None = None) -> list[Check]:
 
 def _warnings(response: Any, found: list[Check]) -> list[str]:
     out = []
-    if response.status == "still_moving":
+    if response.status == "still_moving" and not response.settled_by_energy:
         out.append(f"The run ended at t = {response.end_time:.2f} s while the stack still moved: the verdict is "
                    "undetermined (raise simulation.free_time_limit or simulation.duration).")
     elif response.status == "friction_gained":

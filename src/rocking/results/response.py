@@ -136,15 +136,30 @@ SUMMARY_FIELDS = (
     "overturned", "overturn_time", "exceeded_alpha_time", "peak_rotation", "peak_rotation_over_alpha",
     "peak_sliding", "residual_sliding", "impacts", "first_rocking_time", "first_sliding_time",
     "required_top_friction", "impact_floor_friction_needed", "top_slip_time", "pedestal_uplift_time",
-    "impact_beyond_friction_time", "energy_balance_error", "status", "end_time", "still_moving", "verdict",
+    "impact_beyond_friction_time", "energy_balance_error", "status", "end_time", "still_moving", "settled_by_energy",
+    "verdict",
 )
 
+#: How a run still moving at its end, yet settled by its energy, is described (verdicts, reports).
+SETTLED_TEXT = "with less energy than the statue needs to overturn, on a floor that has stopped"
 
-def verdict_text(status: str, overturn_time: float | None, end_time: float, model_end: float | None = None) -> str:
-    """The one-line verdict: "overturned at t = …", "did not overturn; at rest at t = …", or
-    "undetermined: …" whenever the run could not tell (still moving, the solver stopped, or the
-    two-body model's result ended at ``model_end``, s: a body would have left its support, or an
-    impact needed more floor friction than there is)."""
+
+def settled_by_energy(raw: np.ndarray) -> bool:
+    """Whether a run still moving at its end can no longer overturn: the floor has stopped for
+    good, the statue is inside ±α and has less energy than it needs to reach ±α, and no impact
+    law that adds energy is in use (:func:`rocking.solver.compiled._cannot_overturn`). Such a run
+    did not overturn, and never will: its verdict is decided. False for any other status (a
+    lift-off or an impact held beyond friction overrides it: what follows them is not a result)."""
+    return status_of(raw)[0] == "still_moving" and float(raw[C.S_SETTLED]) == 1.0
+
+
+def verdict_text(status: str, overturn_time: float | None, end_time: float, model_end: float | None = None,
+                 settled: bool = False) -> str:
+    """The one-line verdict: "overturned at t = …", "did not overturn; at rest at t = …", "did not
+    overturn; still moving at t = … with less energy than …" (``settled``: see
+    :func:`settled_by_energy`), or "undetermined: …" whenever the run could not tell (still
+    moving, the solver stopped, or the two-body model's result ended at ``model_end``, s: a body
+    would have left its support, or an impact needed more floor friction than there is)."""
     if status == LIFTED_OFF:
         return (f"undetermined: a body would leave its support at t = {model_end:.3f} s, which the two-body model "
                 "does not follow")
@@ -155,6 +170,8 @@ def verdict_text(status: str, overturn_time: float | None, end_time: float, mode
         return f"overturned at t = {overturn_time:.3f} s"
     if status == "completed":
         return f"did not overturn; at rest at t = {end_time:.3f} s"
+    if status == "still_moving" and settled:
+        return f"did not overturn; still moving at t = {end_time:.3f} s, {SETTLED_TEXT}"
     if status == "still_moving":
         return f"undetermined: still moving at t = {end_time:.3f} s"
     return f"undetermined: the solver stopped at t = {end_time:.3f} s ({status})"
@@ -185,7 +202,9 @@ def summary_values(raw: np.ndarray, alpha: float) -> dict[str, Any]:
         "status": status,
         "end_time": end_time,
         "still_moving": status == "still_moving",
-        "verdict": verdict_text(status, _opt(raw[C.S_OVERTURN_TIME]), end_time, model_end_time(raw)),
+        "settled_by_energy": settled_by_energy(raw),
+        "verdict": verdict_text(status, _opt(raw[C.S_OVERTURN_TIME]), end_time, model_end_time(raw),
+                                settled_by_energy(raw)),
     }
 
 
@@ -330,7 +349,7 @@ class Response:
                        "restitute less), which the two-body model does not follow; a stack of blocks ([[blocks]]) does")
         if s[C.S_INDETERMINATE] > 0:
             out.append(f"{int(s[C.S_INDETERMINATE])} instant(s) where no regime was strictly consistent")
-        if self.status not in ("completed", "overturned"):
+        if self.status not in ("completed", "overturned") and not self.settled_by_energy:
             out.append(self.status_message)
         if self._ended_before_motion():
             out.append(f"the run ended at t = {self.end_time:.3f} s, before the floor motion did "
@@ -352,6 +371,12 @@ class Response:
         """True if the run ended while something still moved: its verdict is undetermined."""
         return self.status == "still_moving"
 
+    @property
+    def settled_by_energy(self) -> bool:
+        """True if the run ended still moving, yet the statue can no longer overturn
+        (:func:`settled_by_energy`): the verdict is "did not overturn"."""
+        return settled_by_energy(self.raw_summary)
+
     def _ended_before_motion(self) -> bool:
         return self.status == "completed" and self.end_time < float(self.motion.duration) - 1e-9
 
@@ -363,7 +388,8 @@ class Response:
         if self._ended_before_motion():
             return (f"undetermined: the run ended at t = {self.end_time:.3f} s, before the floor motion "
                     f"({float(self.motion.duration):.3f} s)")
-        return verdict_text(self.status, self.overturn_time, self.end_time, model_end_time(self.raw_summary))
+        return verdict_text(self.status, self.overturn_time, self.end_time, model_end_time(self.raw_summary),
+                            self.settled_by_energy)
 
     def summary(self) -> dict[str, Any]:
         """The summary contract of ``rocking run`` (SI units, radians, null when it did not happen)."""

@@ -32,11 +32,13 @@ from ..excitation.signal import (
     local_value,
     localise,
     next_crest,
+    signal_end,
 )
 from ..integrators import dop853, dopri5
 from ..models.dynamics import (
     evaluate_all,
     mechanical_energy,
+    overturning_barrier,
     pedestal_half_width,
     pressure_centre,
     pressure_moment,
@@ -74,7 +76,7 @@ _check_signals = types.ExternalFunction("PyErr_CheckSignals", types.int32())
 (S_STATUS, S_OVERTURN_TIME, S_EXCEED_TIME, S_PEAK_ROTATION, S_PEAK_SLIDING, S_RESIDUAL_SLIDING, S_IMPACTS,
  S_FIRST_ROCK, S_FIRST_SLIDE, S_TOP_RATIO, S_BALANCE, S_STEPS, S_EVENTS, S_T_END, S_N_NONPOSITIVE,
  S_PY_NONPOSITIVE, S_TOP_SLIP, S_UPLIFT, S_IMPACT_FLOOR_RATIO, S_IMPACT_FLOOR_SHORT, S_INDETERMINATE,
- S_D_IMPACT, S_D_FRICTION, S_W_INPUT, S_ENERGY_SCALE, S_REJECTED, S_HELD_IMPACT, S_THETA_END) = range(28)
+ S_D_IMPACT, S_D_FRICTION, S_W_INPUT, S_ENERGY_SCALE, S_REJECTED, S_HELD_IMPACT, S_SETTLED) = range(28)
 N_SUMMARY = 28
 
 (STATUS_COMPLETED, STATUS_OVERTURNED, STATUS_MAX_EVENTS, STATUS_SINGULAR, STATUS_STEP_FAILED, STATUS_STILL_MOVING,
@@ -777,6 +779,8 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
     pieces = _piece_table(sig_h, sig_v, breakpoints, t0, t_end)
     n_out, n_ev = _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt, save, n_grid, cap,
                              max_events, t_settle, stop_flag, summ, t_out, y_out, r_out, events, *scratch)
+    floor_end = max(signal_end(sig_h[0], sig_h[1], sig_h[2]), signal_end(sig_v[0], sig_v[1], sig_v[2]))
+    summ[S_SETTLED] = 1.0 if _cannot_overturn(p, summ, scratch[0], floor_end) else 0.0
     return summ, t_out[:n_out], y_out[:n_out], r_out[:n_out], events[:n_ev]
 
 
@@ -1250,5 +1254,23 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
     summ[S_W_INPUT] = y[4]
     summ[S_ENERGY_SCALE] = energy_scale
     summ[S_REJECTED] = rejected
-    summ[S_THETA_END] = y[2]  # θ (rad) where the run ended: whether a statue left rocking can still fall
     return n_out, n_ev
+
+
+@njit(cache=True)
+def _cannot_overturn(p, summ, y, floor_end):
+    """Whether a run that ended still moving (summary ``summ``, state ``y``) can no longer
+    overturn its statue. Once the floor has stopped for good (the run ended at or after
+    ``floor_end``, s, where both components of its motion end), no energy comes in: friction
+    takes energy, and so does every impact of the Coulomb law (derivation §7). So a statue inside
+    ±α whose energy, with the ledger's largest error added, is below :func:`overturning_barrier`
+    never reaches ±α again. The paper's impact law (Eq. 1) keeps u̇ and can add energy where the
+    pedestal slides: no such claim there. (T + V is the same about either corner at θ = 0, and
+    at rest on the base, so the pivot is read from the sign of θ.)"""
+    if summ[S_STATUS] != STATUS_STILL_MOVING or summ[S_T_END] < floor_end:
+        return False
+    if p[IMPACT_COULOMB] < 0.5 and p[CAN_SLIDE] > 0.5:
+        return False
+    s = 1 if y[2] >= 0.0 else -1
+    energy = mechanical_energy(p, s, y[1], y[2], y[3]) + summ[S_BALANCE]
+    return abs(y[2]) < p[ALPHA] and energy < overturning_barrier(p)

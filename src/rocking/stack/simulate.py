@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from ..excitation.base import AbstractMotion
+from ..excitation.signal import signal_end
 from ..results.response import verdict_text
 from ..simulation import Options, _as_options, _breakpoints
 from ..solver.compiled import _piece_table
@@ -133,6 +134,8 @@ class StackResponse:
     initial_energy: float
 
     interfaces: tuple[dict, ...] = ()
+    #: still moving at the end, yet it can no longer overturn (:func:`cannot_overturn`)
+    settled_by_energy: bool = False
 
     @property
     def overturned(self) -> bool:
@@ -162,7 +165,7 @@ class StackResponse:
             below = self.stack.names[k - 1] if k > 0 else "the floor"
             return (f"undetermined: {self.stack.names[k]} slid to the edge of {below} at t = {self.end_time:.3f} s; "
                     "the model stops there (treat it as falling off)")
-        text = verdict_text(self.status, None, self.end_time)
+        text = verdict_text(self.status, None, self.end_time, settled=self.settled_by_energy)
         near_miss = first_past_edge(self.blocks)
         if near_miss is not None:
             # no fall, but a block's corner went past the edge of what it stands on
@@ -191,7 +194,8 @@ class StackResponse:
         out.update(
             impacts=int(np.sum(self.events[:, 2] == engine.EVENT_IMPACT)) if len(self.events) else 0,
             energy_balance_error=float(np.max(np.abs(self.balance_error())) / scale) if scale > 0 else 0.0,
-            status=self.status, end_time=self.end_time, still_moving=self.still_moving, verdict=self.verdict,
+            status=self.status, end_time=self.end_time, still_moving=self.still_moving,
+            settled_by_energy=self.settled_by_energy, verdict=self.verdict,
             blocks=[dict(b) for b in self.blocks], interfaces=[dict(f) for f in self.interfaces],
         )
         return out
@@ -247,7 +251,35 @@ def simulate_stack(
         P, ends, anchor, pieces, bp, t_end, t_settle, y0, options.gravity, options.rtol, options.atol,
         options.max_step, save_dt, int(options.max_events), options.rest_velocity, bool(options.stop_at_edge),
     )
-    return _response(stack, STATUS_NAMES[status], t_stop, samples, events, summ, e0)
+    response = _response(stack, STATUS_NAMES[status], t_stop, samples, events, summ, e0)
+    floor_end = max(signal_end(sig_h.kind, sig_h.params, sig_h.time), signal_end(sig_v.kind, sig_v.params, sig_v.time))
+    if response.status == "still_moving" and cannot_overturn(response, floor_end, options):
+        response = replace(response, settled_by_energy=True)
+    return response
+
+
+def cannot_overturn(response: StackResponse, floor_end: float, options: Options) -> bool:
+    """Whether a one-block stack still moving where its run ended can no longer overturn, by the
+    rule of :func:`rocking.solver.compiled._cannot_overturn` for the two-body model. Once the floor
+    has stopped for good (the run ended at or after ``floor_end``, s), friction and
+    impacts only take energy (the engine's impacts to their allowance for the rest velocity, §6
+    of docs/theory/stack.md), so a block inside ±α with less energy above its rest, E − E₀ plus
+    the ledger's largest error, than m·g·(R − h) never reaches ±α again. Not under the paper's
+    impact law on a face that slips (it keeps the slip rate and can add energy). A taller stack
+    has no such simple bound (which block falls, over which corner, how high the others ride):
+    it stays undetermined."""
+    stack = response.stack
+    if stack.n != 1 or len(response.t) == 0:
+        return False
+    if response.end_time < floor_end:
+        return False
+    if options.impact == "paper" and stack.interfaces[0].friction is not None:
+        return False
+    block = stack.blocks[0]
+    alpha = math.atan2(block.width, block.height)
+    barrier = block.mass * options.gravity * (0.5 * math.hypot(block.width, block.height) - 0.5 * block.height)
+    energy = float(response.energy[-1] - response.initial_energy) + float(np.max(np.abs(response.balance_error())))
+    return bool(abs(response.rotation[-1, 0]) < alpha and energy < barrier)
 
 
 def first_past_edge(blocks: Sequence[Mapping[str, Any]]) -> tuple[float, int] | None:
