@@ -296,6 +296,9 @@ def test_design_sweep_reports_progress_and_its_report(client):
     assert dones == sorted(dones)
     html = client.get(page).get_data(as_text=True)
     assert "Recommended pedestal floor friction" in text_of(html, "verdict")
+    # the record (19.9 s) was cut at the 6 s entered: the page says what the verdicts judge
+    assert ("Warning: the record was cut at 6 s, the duration entered (it lasts 19.9 s): these verdicts judge the "
+            "first 6 s only, and the rest of the record may yet make the statue fall.") in text_of(html, "sweep-verdict-lines")
     assert html.count("<tr") >= 5  # header + 4 values
     report = client.get(re.search(r'id="download-report" href="([^"]+)"', html).group(1))
     assert report.status_code == 200 and b"Friction design sweep" in report.data

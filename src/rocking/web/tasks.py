@@ -504,6 +504,10 @@ def sweep_task(
     progress(n_runs, total, "writing the report")
     a = ds.attrs
     lines = str(a["verdict_lines"]).split("\n")
+    if shaken is not motion:
+        # the design saw the record cut at the duration: say that its verdicts judge that window
+        lines.append(f"Warning: the record was cut at {duration:g} s, the duration entered (it lasts {end:g} s): "
+                     f"these verdicts judge the first {duration:g} s only, and the rest of the record may yet make the statue fall.")
     recommended = math.isfinite(a["recommended_mu_s"])
     meets = bool(a["meets_every_requirement"])
     # the single run the report shows: the recommendation; with none (no value is safe), the
