@@ -300,7 +300,7 @@ def test_a_run_cut_short_says_undetermined(server, browser):
     assert "does not overturn" not in shown
 
 
-def test_design_sweep_progress_and_report(server, browser):
+def test_design_sweep_progress_and_report(server, browser, sized):
     from selenium.webdriver.common.by import By
 
     browser.get(server + "/")
@@ -321,6 +321,13 @@ def test_design_sweep_progress_and_report(server, browser):
     csv_href = browser.find_element(By.ID, "download-csv").get_attribute("href")
     with urllib.request.urlopen(csv_href, timeout=30) as resp:
         assert len(resp.read().decode().strip().splitlines()) == 6
+    # the record was cut at the 8 s entered, and the page says so
+    assert "the record was cut at 8 s" in browser.find_element(By.ID, "sweep-verdict-lines").text
+    # on a phone the page fits the screen: the record's name in the design's lines wraps inside a
+    # word (it has no space; it widened the page by 22 px until 2026-12-07), the table scrolls
+    sized(390, 844)
+    scroll_width, inner = widths(browser)
+    assert inner == 390 and scroll_width <= inner, (scroll_width, inner)
 
 
 def test_a_run_over_the_servers_limits_shows_the_message(server, browser):

@@ -65,6 +65,7 @@ fieldset.off label:not(.check) { opacity: 0.45; }
 .figures img { max-width: 100%; height: auto; border: 1px solid #e1e4e8; background: #fff; }
 figcaption { font-size: 0.82em; color: #556; margin-top: 0.2em; max-width: 640px; }
 ul.warnings li, li.warning { color: #8a4b00; }
+#sweep-verdict-lines li { overflow-wrap: anywhere; }  /* a record's name has no space to break at */
 progress { width: 100%; height: 1.3em; }
 .muted { color: #667; font-size: 0.85em; }
 a.download { display: inline-block; margin: 0.3em 0.8em 0.3em 0; }
