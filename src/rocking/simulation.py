@@ -50,7 +50,9 @@ class Options:
         When no duration is given, the run goes on after the floor motion ends, with the floor
         still, until every body is at rest or the statue falls, but for at most this long, s.
         A run cut short by this limit (or by an explicit duration) while anything still moves
-        ends with status "still_moving": its verdict is undetermined.
+        ends with status "still_moving": its verdict is undetermined, unless the floor motion
+        is over and the statue has less energy left than it needs to overturn
+        (``settled_by_energy``, docs/verdicts.md).
     stop_at_edge : bool
         Stacks only: stop a run, with status "slid_past_edge" and an undetermined verdict, when
         a sliding block's corner reaches the edge of the block below (a conservative criterion:
@@ -290,7 +292,8 @@ def simulate(
         Simulated time, s. Default: the motion's duration, then free motion on a still floor
         until everything is at rest or the statue falls, for at most
         ``options.free_time_limit`` s. The summary's ``verdict`` says "undetermined" when the
-        run ends while anything still moves.
+        run ends while anything still moves, unless the statue can no longer overturn
+        (``settled_by_energy``).
     options : Options or dict
         Model options and solver tolerances.
     initial_rotation, initial_angular_velocity : float
