@@ -112,7 +112,17 @@ def test_md_opens_with_a_title_and_the_summary_numbers_match_the_csv(written):
     assert (hold, hold_alpha, len(judged)) == (7, 12, 16)  # regression (docs/paper-case-studies.md)
 
     moving = sum(r["still_moving"] == "True" for r in csv_rows)
+    settled = sum(r["still_moving"] == "True" and r["settled_by_energy"] == "True" for r in csv_rows)
     assert f"- {moving} of {len(csv_rows)} runs were still moving" in summary
+    assert (f"In {settled} of them the statue has less energy left than it needs to overturn, so it cannot fall "
+            f"afterwards; the verdict of the other {moving - settled} covers that window only.") in summary
+    # the paper's impact law, which can add energy where the pedestal slides, never settles a run
+    assert settled > 0 and not any(r["settled_by_energy"] == "True" for r in csv_rows
+                                   if r["variant"] == "pedestal_paper_options")
+    header, body = _table_rows(_section(md, "The statue on the pedestal"))
+    end = {(row[0], row[1]): row[header.index("at the end")] for row in body}
+    assert end[("9a", "on pedestal (full N, Coulomb impact)")] == "moving, cannot fall"
+    assert end[("9a", "on pedestal (paper: N = Mg, θ̇⁺ = rθ̇⁻)")] == "moving"
 
 
 def test_md_summary_follows_the_rows(table):

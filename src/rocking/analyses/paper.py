@@ -291,6 +291,7 @@ def _row(case: PaperCase, variant: str, response: Response) -> dict[str, Any]:
         "warning_text": "; ".join(s["warnings"]),
         "status": s["status"],
         "still_moving": s["still_moving"],
+        "settled_by_energy": s["settled_by_energy"],
     }
 
 
@@ -420,7 +421,9 @@ MD_COLUMNS: tuple[tuple[str, str], ...] = (
     ("warn.", "how many of the model's warnings the run raised (their texts are in paper_outcomes.csv, column "
               "warning_text); \"still moving when the run ended\" is one of them."),
     ("at the end", "*moving* if the statue or the pedestal had not come to rest when the paper's window "
-                   "closed (whether it would still fall later is not decided), *at rest*, or *fallen*."),
+                   "closed (whether it would still fall later is not decided); *moving, cannot fall* if, as the "
+                   "floor stops there, the statue has less energy left than it needs to overturn "
+                   "(docs/verdicts.md); *at rest*; or *fallen*."),
     ("paper says", "the paper's statement for this statue: alone it *rocks* or *overturns*; on the pedestal "
                    "its response *does not change significantly*, *overturning avoided* or *overturning only "
                    "delayed*."),
@@ -449,7 +452,7 @@ def _end_state(row: Mapping[str, Any]) -> str:
     if row["overturned"]:
         return "fallen"
     if row["still_moving"]:
-        return "moving"
+        return "moving, cannot fall" if row.get("settled_by_energy") else "moving"
     return "at rest" if row["status"] == "completed" else str(row["status"])
 
 
@@ -541,6 +544,7 @@ def outcome_summary(rows: Sequence[Mapping[str, Any]]) -> dict[str, Any]:
         "failed_alpha": _failed_claims(judged, "agrees_alpha_criterion"),
         "runs": len(rows),
         "still_moving": sum(bool(r["still_moving"]) for r in rows),
+        "settled": sum(bool(r["still_moving"]) and bool(r.get("settled_by_energy")) for r in rows),
     }
 
 
@@ -580,9 +584,11 @@ def _summary_lines(rows: Sequence[Mapping[str, Any]]) -> list[str]:
     if s["failed_alpha"]:
         lines.append(f"  - Not borne out with |θ| > α: {s['failed_alpha']}.")
     if s["still_moving"]:
+        open_ = s["still_moving"] - s["settled"]
         lines.append(
-            f"- {s['still_moving']} of {s['runs']} runs were still moving when the paper's window closed: "
-            "their verdict covers that window only."
+            f"- {s['still_moving']} of {s['runs']} runs were still moving when the paper's window closed, where its "
+            f"floor motion ends. In {s['settled']} of them the statue has less energy left than it needs to "
+            f"overturn, so it cannot fall afterwards; the verdict of the other {open_} covers that window only."
         )
     return lines
 
