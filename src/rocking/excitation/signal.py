@@ -66,6 +66,13 @@ def signal_end(kind, params, times):
     return params[3]
 
 
+@njit(cache=True)
+def floor_end(sig_h, sig_v):
+    """When the floor motion ends for good, s: the later of its two components' :func:`signal_end`
+    (each a (kind, params, times, values) tuple)."""
+    return max(signal_end(sig_h[0], sig_h[1], sig_h[2]), signal_end(sig_v[0], sig_v[1], sig_v[2]))
+
+
 # Local forms: inside one integration step a signal is one smooth formula, so its coefficients
 # are worked out once per step ("localised") and the right-hand side evaluates only that
 # formula — no array look-ups, no branches on the kind in the innermost loop.

@@ -181,6 +181,7 @@ def summary_values(raw: np.ndarray, alpha: float) -> dict[str, Any]:
     """The summary dictionary (keys ``SUMMARY_FIELDS``) from the solver's raw summary vector."""
     status = status_of(raw)[0]
     end_time = float(raw[C.S_T_END])
+    settled = settled_by_energy(raw)
     return {
         "overturned": status == "overturned",
         "overturn_time": _opt(raw[C.S_OVERTURN_TIME]),
@@ -202,9 +203,8 @@ def summary_values(raw: np.ndarray, alpha: float) -> dict[str, Any]:
         "status": status,
         "end_time": end_time,
         "still_moving": status == "still_moving",
-        "settled_by_energy": settled_by_energy(raw),
-        "verdict": verdict_text(status, _opt(raw[C.S_OVERTURN_TIME]), end_time, model_end_time(raw),
-                                settled_by_energy(raw)),
+        "settled_by_energy": settled,
+        "verdict": verdict_text(status, _opt(raw[C.S_OVERTURN_TIME]), end_time, model_end_time(raw), settled),
     }
 
 

@@ -32,7 +32,7 @@ from ..excitation.signal import (
     local_value,
     localise,
     next_crest,
-    signal_end,
+    floor_end,
 )
 from ..integrators import dop853, dopri5
 from ..models.dynamics import (
@@ -779,8 +779,7 @@ def integrate(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, atol, max_s
     pieces = _piece_table(sig_h, sig_v, breakpoints, t0, t_end)
     n_out, n_ev = _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt, save, n_grid, cap,
                              max_events, t_settle, stop_flag, summ, t_out, y_out, r_out, events, *scratch)
-    floor_end = max(signal_end(sig_h[0], sig_h[1], sig_h[2]), signal_end(sig_v[0], sig_v[1], sig_v[2]))
-    summ[S_SETTLED] = 1.0 if _cannot_overturn(p, summ, scratch[0], floor_end) else 0.0
+    summ[S_SETTLED] = 1.0 if _cannot_overturn(p, summ, scratch[0], floor_end(sig_h, sig_v)) else 0.0
     return summ, t_out[:n_out], y_out[:n_out], r_out[:n_out], events[:n_ev]
 
 
@@ -1258,16 +1257,16 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
 
 
 @njit(cache=True)
-def _cannot_overturn(p, summ, y, floor_end):
+def _cannot_overturn(p, summ, y, t_floor_end):
     """Whether a run that ended still moving (summary ``summ``, state ``y``) can no longer
     overturn its statue. Once the floor has stopped for good (the run ended at or after
-    ``floor_end``, s, where both components of its motion end), no energy comes in: friction
+    ``t_floor_end``, s, where both components of its motion end), no energy comes in: friction
     takes energy, and so does every impact of the Coulomb law (derivation §7). So a statue inside
     ±α whose energy, with the ledger's largest error added, is below :func:`overturning_barrier`
     never reaches ±α again. The paper's impact law (Eq. 1) keeps u̇ and can add energy where the
     pedestal slides: no such claim there. (T + V is the same about either corner at θ = 0, and
     at rest on the base, so the pivot is read from the sign of θ.)"""
-    if summ[S_STATUS] != STATUS_STILL_MOVING or summ[S_T_END] < floor_end:
+    if summ[S_STATUS] != STATUS_STILL_MOVING or summ[S_T_END] < t_floor_end:
         return False
     if p[IMPACT_COULOMB] < 0.5 and p[CAN_SLIDE] > 0.5:
         return False

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 
 from ..excitation.base import AbstractMotion
-from ..excitation.signal import signal_end
+from ..excitation.signal import floor_end
 from ..results.response import verdict_text
 from ..simulation import Options, _as_options, _breakpoints
 from ..solver.compiled import _piece_table
@@ -245,23 +245,23 @@ def simulate_stack(
     y0[: 3 * n] = z0
     sig_h, sig_v = motion.signal(), motion.vertical_signal()
     bp = _breakpoints(motion, t_end, (sig_h, sig_v))
-    pieces = _piece_table((sig_h.kind, sig_h.params, sig_h.time, sig_h.values),
-                          (sig_v.kind, sig_v.params, sig_v.time, sig_v.values), bp, 0.0, t_end)
+    h = (sig_h.kind, sig_h.params, sig_h.time, sig_h.values)
+    v = (sig_v.kind, sig_v.params, sig_v.time, sig_v.values)
+    pieces = _piece_table(h, v, bp, 0.0, t_end)
     status, t_stop, samples, events, summ, e0, *_ = engine.integrate(
         P, ends, anchor, pieces, bp, t_end, t_settle, y0, options.gravity, options.rtol, options.atol,
         options.max_step, save_dt, int(options.max_events), options.rest_velocity, bool(options.stop_at_edge),
     )
     response = _response(stack, STATUS_NAMES[status], t_stop, samples, events, summ, e0)
-    floor_end = max(signal_end(sig_h.kind, sig_h.params, sig_h.time), signal_end(sig_v.kind, sig_v.params, sig_v.time))
-    if response.status == "still_moving" and cannot_overturn(response, floor_end, options):
+    if response.status == "still_moving" and cannot_overturn(response, floor_end(h, v), options):
         response = replace(response, settled_by_energy=True)
     return response
 
 
-def cannot_overturn(response: StackResponse, floor_end: float, options: Options) -> bool:
+def cannot_overturn(response: StackResponse, t_floor_end: float, options: Options) -> bool:
     """Whether a one-block stack still moving where its run ended can no longer overturn, by the
     rule of :func:`rocking.solver.compiled._cannot_overturn` for the two-body model. Once the floor
-    has stopped for good (the run ended at or after ``floor_end``, s), friction and
+    has stopped for good (the run ended at or after ``t_floor_end``, s), friction and
     impacts only take energy (the engine's impacts to their allowance for the rest velocity, §6
     of docs/theory/stack.md), so a block inside ±α with less energy above its rest, E − E₀ plus
     the ledger's largest error, than m·g·(R − h) never reaches ±α again. Not under the paper's
@@ -271,7 +271,7 @@ def cannot_overturn(response: StackResponse, floor_end: float, options: Options)
     stack = response.stack
     if stack.n != 1 or len(response.t) == 0:
         return False
-    if response.end_time < floor_end:
+    if response.end_time < t_floor_end:
         return False
     if options.impact == "paper" and stack.interfaces[0].friction is not None:
         return False
