@@ -1,0 +1,172 @@
+"""The claim "still moving, but it can no longer overturn" (``settled_by_energy``), tested as a
+claim: on random statues, alone or on pedestals, and on random one-block stacks, shaken by
+random pulses and harmonics, each run is cut at a random time after (or before) the floor
+stops while the statue still moves.
+
+* Every run the rule calls settled is run again without the cut, until it comes to rest or
+  falls: none may fall. That is what the verdict "did not overturn" promises.
+* The flag is recomputed here from the saved last state, with the energy written out below
+  (T + V of the statue and its pedestal from u̇, θ, θ̇; of a free block from its pose and
+  velocity), not the library's: settled exactly when the floor has stopped, the statue is inside
+  ±α, its energy above rest is below the barrier m·g·(R − h) and no impact law that can add
+  energy acts on a face that slips. Runs within 1e-8 of the barrier are not compared (the rule
+  adds the ledger's error, ~1e-12 of the energy).
+* The sample probes the barrier: some runs cut inside α with energy within 2 % above the
+  barrier do fall later, so a rule 2 % too lax would call one of them settled.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+import rocking as rk
+from rocking.stack import Block, Interface, Stack
+from rocking.stack.simulate import simulate_stack
+
+G = 9.81
+BAND = 1e-8  # relative distance from the barrier below which the flag is not compared
+DT = 0.01  # s, between saved samples
+
+
+def _energy_above_rest(system, u_dot, theta, theta_dot):
+    """T + V − V_rest (J) of a statue (θ > 0: on its +x corner, leaning to +x) and its pedestal,
+    or its own base sliding on the floor when alone (u̇: the pedestal's, or that base's, slide
+    rate). The statue's centre sits at x = u + s·b − s·b·cos θ + h·sin θ,
+    y = s·b·sin θ + h·cos θ above its pivot's level, s = sign θ."""
+    st = system.statue
+    b, h, m2 = st.width / 2, st.height / 2, st.mass
+    m1 = system.pedestal.mass if system.pedestal is not None else 0.0
+    s = 1.0 if theta >= 0 else -1.0
+    xd = u_dot + (s * b * math.sin(theta) + h * math.cos(theta)) * theta_dot
+    yd = (s * b * math.cos(theta) - h * math.sin(theta)) * theta_dot
+    y = s * b * math.sin(theta) + h * math.cos(theta)
+    inertia = m2 * (b * b + h * h) / 3.0  # about the centre: m(B² + H²)/12
+    return 0.5 * m1 * u_dot**2 + 0.5 * m2 * (xd * xd + yd * yd) + 0.5 * inertia * theta_dot**2 + m2 * G * (y - h)
+
+
+def _barrier(width, height, mass):
+    return mass * G * (math.hypot(width, height) - height) / 2
+
+
+def _motion(rng, a, f):
+    kind = int(rng.integers(4))
+    if kind == 0:
+        return rk.SinePulse(amplitude=a, frequency=f)
+    if kind == 1:
+        return rk.CosinePulse(amplitude=a, frequency=f)
+    if kind == 2:
+        return rk.Harmonic(amplitude=a, frequency=f, cycles=int(rng.integers(1, 4)))
+    return rk.RickerPulse(amplitude=a, frequency=f)
+
+
+def _friction(rng, low, high):
+    mu = rng.uniform(low, high)
+    return rk.Friction(static=mu, kinetic=mu * rng.uniform(0.7, 1.0))
+
+
+def _system(rng):
+    """A statue 0.15–0.5 m wide, 2–6 times as tall: alone and held, alone and sliding on the
+    floor, on a pedestal that slides, or on a rough one (μ 1–2) that seldom does; the impact law
+    and the restitution drawn too."""
+    width = rng.uniform(0.15, 0.5)
+    height = width * rng.uniform(2.0, 6.0)
+    restitution = None if rng.random() < 0.5 else rng.uniform(0.6, 0.95)
+    kind = int(rng.integers(4))
+    friction = _friction(rng, 0.15, 0.6) if kind == 1 else None
+    statue = rk.Statue(width=width, height=height, mass=rng.uniform(20.0, 300.0), restitution=restitution,
+                       friction=friction)
+    if kind >= 2:
+        pedestal = rk.Pedestal(mass=rng.uniform(20.0, 500.0),
+                               friction=_friction(rng, 0.1, 0.5) if kind == 2 else _friction(rng, 1.0, 2.0))
+        system = rk.System(statue=statue, pedestal=pedestal)
+    else:
+        system = rk.System(statue=statue)
+    can_slide = kind >= 1  # a frictional face, however rough, may slip
+    impact = "paper" if rng.random() < 0.35 else "coulomb"
+    return system, can_slide, impact
+
+
+def test_no_statue_called_settled_falls_when_run_on_and_the_flag_is_its_energy_against_its_barrier():
+    rng = np.random.default_rng(20261207)
+    settled = unsettled = compared = 0
+    near_falls = []  # E/barrier of runs cut inside α, not settled, that fall later
+    for _ in range(3000):
+        system, can_slide, impact = _system(rng)
+        st = system.statue
+        alpha = math.atan2(st.width, st.height)
+        motion = _motion(rng, G * math.tan(alpha) * rng.uniform(1.0, 4.0), rng.uniform(0.5, 4.0))
+        options = rk.Options(gravity=G, impact=impact)
+        before_end = rng.random() < 0.15  # cut while the floor still moves: never settled
+        # cut on a saved sample (every 0.01 s), so that the last one is the state the rule judged
+        steps = math.ceil(motion.duration / DT)
+        steps = int(steps * rng.uniform(0.3, 0.99)) if before_end else steps + int(rng.integers(0, 100))
+        cut = rk.simulate(system, motion, duration=steps * DT, throw=False,
+                          options=rk.Options(gravity=G, impact=impact, save_dt=DT))
+        if cut.status != "still_moving":
+            continue
+        assert cut.t[-1] == cut.end_time
+        u_dot, theta, theta_dot = cut.u_dot[-1], cut.theta[-1], cut.theta_dot[-1]
+        ratio = _energy_above_rest(system, u_dot, theta, theta_dot) / _barrier(st.width, st.height, st.mass)
+        inside = abs(theta) < alpha
+        expected = bool(not before_end and not (impact == "paper" and can_slide) and inside and ratio < 1.0)
+        if abs(ratio - 1.0) > BAND and abs(abs(theta) - alpha) > 1e-12:
+            compared += 1
+            assert cut.settled_by_energy is expected, (system, motion, impact, before_end, ratio, theta)
+        if cut.settled_by_energy:
+            settled += 1
+            assert cut.verdict.startswith("did not overturn; still moving")
+            full = rk.simulate(system, motion, options=options, save=False, throw=False)
+            assert not full.overturned and full.status in ("completed", "still_moving"), (system, motion, impact)
+        else:
+            unsettled += 1
+            assert cut.verdict.startswith("undetermined")
+            if inside and not before_end and 1.0 < ratio < 1.02:
+                if rk.simulate(system, motion, options=options, save=False, throw=False).overturned:
+                    near_falls.append(ratio)
+    # enough of both kinds to mean something, and falls from just above the barrier
+    assert settled > 400 and unsettled > 150 and compared > settled + unsettled - 5
+    assert len(near_falls) >= 3 and min(near_falls) < 1.002, near_falls
+
+
+def _block_energy_above_rest(block, pose, velocity):
+    """½·m·(Ẋ² + Ẏ²) + ½·I·Θ̇² + m·g·(Y − H/2) of a free rectangle (I = m(B² + H²)/12), J."""
+    m = block.mass
+    inertia = m * (block.width**2 + block.height**2) / 12.0
+    return (0.5 * m * (velocity[0] ** 2 + velocity[1] ** 2) + 0.5 * inertia * velocity[2] ** 2
+            + m * G * (pose[1] - block.height / 2))
+
+
+def test_no_one_block_stack_called_settled_falls_when_run_on_and_the_flag_is_its_energy_against_its_barrier():
+    rng = np.random.default_rng(7)
+    settled = unsettled = 0
+    for _ in range(250):
+        width = rng.uniform(0.15, 0.5)
+        height = width * rng.uniform(2.0, 6.0)
+        slides = rng.random() < 0.5
+        block = Block(width=width, height=height, mass=rng.uniform(20.0, 300.0))
+        interface = Interface(friction=_friction(rng, 0.15, 0.6) if slides else None,
+                              restitution=None if rng.random() < 0.5 else rng.uniform(0.6, 0.95))
+        stack = Stack(blocks=(block,), interfaces=(interface,))
+        impact = "paper" if rng.random() < 0.3 else "coulomb"
+        alpha = math.atan2(width, height)
+        motion = _motion(rng, G * math.tan(alpha) * rng.uniform(1.0, 4.0), rng.uniform(0.5, 4.0))
+        cut = simulate_stack(stack, motion, options=rk.Options(gravity=G, impact=impact,
+                                                               free_time_limit=rng.uniform(0.0, 1.0)))
+        if cut.status != "still_moving":
+            continue
+        assert cut.t[-1] == cut.end_time
+        ratio = _block_energy_above_rest(block, cut.pose[-1, 0], cut.velocity[-1, 0]) / _barrier(width, height,
+                                                                                                  block.mass)
+        theta = cut.pose[-1, 0, 2]
+        expected = bool(not (impact == "paper" and slides) and abs(theta) < alpha and ratio < 1.0)
+        if abs(ratio - 1.0) > BAND and abs(abs(theta) - alpha) > 1e-12:
+            assert cut.settled_by_energy is expected, (stack, motion, impact, ratio, theta)
+        if cut.settled_by_energy:
+            settled += 1
+            full = simulate_stack(stack, motion, options=rk.Options(gravity=G, impact=impact))
+            assert not full.overturned and full.status in ("completed", "still_moving"), (stack, motion, impact)
+        else:
+            unsettled += 1
+    assert settled > 40 and unsettled > 10
