@@ -2275,3 +2275,39 @@ def test_a_frictionless_top_face_is_flagged_as_soon_as_the_statue_rocks():
     (slip,) = [w for w in r.warnings if "slip on the pedestal" in w]
     t_slip = float(re.match(r"from t = ([0-9.]+) s", slip).group(1))
     assert first_rock <= t_slip <= first_rock + 0.05
+
+
+def test_the_right_hand_side_fills_every_slot_the_step_loop_reads_back():
+    """``compiled.rhs`` writes dy/dt into ``out[:6]`` and (a_g, a_v, F, N, P_x, P_y, ok) into
+    ``out[6:13]``; the step loop keeps them in its stage rows and reads P_x and P_y back at each
+    step's ends (the friction the statue's base needs, the top-face check). Each slot against
+    ``evaluate_all`` and the floor signals at the same state, in every regime, on a floor with both
+    components moving; ``out`` starts as NaN so that a slot left unwritten shows. Kills
+    compiled.py:159's 68b6c2cc (P_x written into P_y's slot, its own left as it was: every value
+    it fed was found again by the stages' own evaluations, so no run differed)."""
+    from rocking.excitation.record import GroundMotion
+    from rocking.models.dynamics import evaluate_all
+    from rocking.simulation import prepare
+    from rocking.solver import compiled as C
+
+    system = rk.System(statue=rk.Statue(width=0.4, height=1.6, mass=80.0),
+                       pedestal=rk.Pedestal(mass=120.0, friction=rk.Friction(static=0.4, kinetic=0.3)))
+    time = np.linspace(0.0, 1.0, 101)
+    motion = GroundMotion(time=time, values=3.0 * np.sin(7.0 * time), name="both",
+                          vertical=-2.0 * np.cos(5.0 * time))
+    p, args = prepare(system, motion, duration=1.0, options=rk.Options(gravity=9.81))
+    sig_h, sig_v, breakpoints, t0, t_end = args[1:6]
+    table = C._piece_table(sig_h, sig_v, breakpoints, t0, t_end)
+    edges = np.concatenate(([t0], breakpoints, [t_end]))
+    t = 0.4321
+    loc = C._piece(table, int(np.searchsorted(edges, t)) - 1)
+    a, av = 3.0 * math.sin(7.0 * t), -2.0 * math.cos(5.0 * t)  # linear between samples: to 1e-3
+    y = np.array([0.01, 0.2, 0.05, -0.3, 0.0, 0.0])
+    for sig, s in ((0, 0), (1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (-1, -1), (1, -1)):
+        out = np.full(C.N_STATE + C.N_DIAG, np.nan)
+        C.rhs(t, y, p, sig, s, loc, out)
+        udd, thdd, ok, f, n, px, py, p_in, p_fric = evaluate_all(p, sig, s, y[1], y[2], y[3], out[6], out[7])
+        assert out[6] == pytest.approx(a, abs=1e-3) and out[7] == pytest.approx(av, abs=1e-3)
+        np.testing.assert_array_equal(out[:13], [y[1], udd, y[3], thdd, p_in, p_fric, out[6], out[7], f, n, px, py,
+                                                 1.0 if ok else 0.0], err_msg=f"regime sig={sig}, s={s}")
+        assert px != 0.0 or s == 0  # a rocking statue's base pushes sideways: the slot is not trivially 0
