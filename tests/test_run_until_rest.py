@@ -504,3 +504,23 @@ def test_a_pedestal_of_unknown_height_is_never_judged_for_uplift_even_as_it_jump
             assert uplift is None and not any("uplift" in w for w in r.warnings)
         else:
             assert uplift is not None and uplift <= lift + 1e-9
+
+
+def test_the_saved_series_ends_with_the_state_the_verdict_judges():
+    """A run cut while the statue still moves ends between two saved grid points; its last row is
+    the state at ``end_time``, the one the verdict (and the energy rule) judged, not the grid
+    point before it. The same run saved on a grid that lands on its end holds the same state
+    there, to its rounding (the steps are the same; that grid point is read off the last step's
+    interpolant, 1 ulp from the step's end)."""
+    statue = block(0.25, 1.0, restitution=0.8)
+    motion = rk.Harmonic(amplitude=4.0, frequency=1.2, cycles=3)
+    opts = rk.Options(gravity=G, free_time_limit=0.123)
+    r = rk.simulate(alone(statue), motion, options=opts)
+    t_end = motion.duration + 0.123
+    assert r.status == "still_moving" and r.end_time == pytest.approx(t_end, abs=1e-12)
+    assert r.t[-1] == r.end_time and r.t[-2] < r.end_time - 1e-3  # the grid (0.01 s) misses the end
+    on_grid = rk.simulate(alone(statue), motion, options=rk.Options(gravity=G, free_time_limit=0.123,
+                                                                    save_dt=t_end / 100))
+    assert on_grid.t[-1] == r.end_time
+    np.testing.assert_allclose(on_grid.state[-1], r.state[-1], rtol=1e-14, atol=1e-16)
+    assert abs(r.theta[-1] - r.theta[-2]) > 1e-6  # it moved since the last grid point

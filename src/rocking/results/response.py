@@ -212,8 +212,9 @@ def summary_values(raw: np.ndarray, alpha: float) -> dict[str, Any]:
 class Response:
     """The result of :func:`rocking.simulate`.
 
-    Time series (sampled on a uniform grid merged with the event instants; at an event both the
-    state before and after appear with the same time): ``t`` (s), ``u`` and ``u_dot`` (sliding of
+    Time series (sampled on a uniform grid merged with the event instants, and ending at
+    ``end_time``, the state the verdict judges; at an event both the state before and after
+    appear with the same time): ``t`` (s), ``u`` and ``u_dot`` (sliding of
     the body on the floor relative to the floor, m and m/s), ``theta`` and ``theta_dot`` (statue,
     rad and rad/s), ``regime`` (:class:`Regime` codes), ``pivot`` (+1: the statue rocks on its +x
     corner, −1: on its −x corner, 0: it does not rock) and ``slip_direction`` (the sign of the

@@ -1234,6 +1234,13 @@ def _integrate(p, pieces, breakpoints, t0, t_end, rtol, atol, max_step, save_dt,
         # Last grid point(s) reached exactly at t_end.
         n_out, next_grid = _hold(t_out, y_out, r_out, n_out, cap, next_grid, n_grid, t0, save_dt, t + 1e-9, y,
                                  _saved_code(sig, s), t)
+        if n_out < cap and (n_out == 0 or t_out[n_out - 1] < t):
+            # The state where the run ended, between grid points: the one its verdict judges
+            # (still moving, settled or not, when the time ran out; or where it stopped).
+            t_out[n_out] = t
+            _save_row(y_out, n_out, y)
+            r_out[n_out] = _saved_code(sig, s)
+            n_out += 1
 
     summ[S_STATUS] = status
     summ[S_PEAK_ROTATION] = peak_theta

@@ -520,6 +520,8 @@ def integrate_crosscheck(p, sig_h, sig_v, breakpoints, t0, t_end, y_init, rtol, 
                 break
             record(tg, y, _regime(st["sig"], st["s"]), True)
             st["next_grid"] += 1
+        if not t_out or t_out[-1] < t:
+            record(t, y, _regime(st["sig"], st["s"]), False)  # the end, between grid points
 
     return {
         "t": np.array(t_out, dtype=float),
