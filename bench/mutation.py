@@ -58,7 +58,7 @@ MODULES: dict[str, list[str]] = {
     "excitation/signal.py": [
         "test_mutants.py", "test_independent_solver.py", "test_floor_signals.py", "test_fast_paths.py", "test_single_block_rocking.py",
         "test_sliding_and_slide_rock.py", "test_statue_on_pedestal.py", "test_integrator_crosscheck.py",
-        "test_records.py",
+        "test_records.py", "test_run_until_rest.py", "test_settle_claims.py",
     ],
     "models/modes.py": [
         "test_mutants.py", "test_independent_solver.py", "test_fast_paths.py", "test_single_block_rocking.py", "test_sliding_and_slide_rock.py",
@@ -66,7 +66,7 @@ MODULES: dict[str, list[str]] = {
     ],
     "models/dynamics.py": [
         "test_mutants.py", "test_independent_solver.py", "test_statue_on_pedestal.py", "test_single_block_rocking.py",
-        "test_sliding_and_slide_rock.py", "test_fast_paths.py", "test_integrator_crosscheck.py",
+        "test_sliding_and_slide_rock.py", "test_fast_paths.py", "test_integrator_crosscheck.py", "test_settle_claims.py",
     ],
     "models/transitions.py": [
         "test_mutants.py", "test_impact_beyond_friction.py", "test_independent_solver.py", "test_single_block_rocking.py", "test_sliding_and_slide_rock.py",
@@ -86,7 +86,7 @@ MODULES: dict[str, list[str]] = {
     "solver/compiled.py": [
         "test_compiled_root_finders.py", "test_mutants.py", "test_impact_beyond_friction.py", "test_fast_paths.py", "test_single_block_rocking.py", "test_sliding_and_slide_rock.py",
         "test_statue_on_pedestal.py", "test_integrator_crosscheck.py", "test_crosscheck_mutants.py",
-        "test_run_until_rest.py", "test_interrupts.py",
+        "test_run_until_rest.py", "test_settle_claims.py", "test_interrupts.py",
         # the stack engine's half of this file cannot see a mutant of the two-body solver
         "test_compiled_bounds.py::test_the_solver_core_stays_inside_its_arrays",
         # the two-body need in a step an impact cuts, against its saved forces (thirtieth round)
@@ -118,7 +118,7 @@ MODULES: dict[str, list[str]] = {
     "stack/engine.py": ["test_stack_engine_parts.py", "test_stack_engine.py", "test_stack_crosscheck.py",
                         "test_stack_timestepping.py"],
     "stack/model.py": ["test_stack_config.py", "test_stack_engine.py", "test_input_errors.py"],
-    "stack/simulate.py": ["test_stack_engine.py", "test_stack_crosscheck.py", "test_design_stack.py", "test_report_stack.py"],
+    "stack/simulate.py": ["test_settle_claims.py", "test_stack_engine.py", "test_stack_crosscheck.py", "test_design_stack.py", "test_report_stack.py"],
     "stack/timestepping.py": ["test_stack_timestepping.py"],
     # The Runge–Kutta toolkits both cores share: their unit tests compile small drivers of their
     # own (against SciPy's steps, the bitwise partial steps, the root searches on built polynomials),
