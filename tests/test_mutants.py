@@ -2311,3 +2311,34 @@ def test_the_right_hand_side_fills_every_slot_the_step_loop_reads_back():
         np.testing.assert_array_equal(out[:13], [y[1], udd, y[3], thdd, p_in, p_fric, out[6], out[7], f, n, px, py,
                                                  1.0 if ok else 0.0], err_msg=f"regime sig={sig}, s={s}")
         assert px != 0.0 or s == 0  # a rocking statue's base pushes sideways: the slot is not trivially 0
+
+
+def test_an_impact_excursion_narrower_than_the_guard_samples_is_found_at_its_turning_point():
+    """After an event the impact guard S·θ starts a step on zero; if the statue rocks out and back
+    within the step, ``_positive_inside`` must find a point where S·θ > 0 so that the impact can
+    be located. Its 31 samples (k/32) miss an excursion narrower than 1/32 of the step; the
+    turning point of θ, where S·θ peaks, does not. Here θ(x) = x·(0.02 − x) on the step's dense
+    output (F0 = −0.98, F1 = 1 in DOP853's form y + x·(F0 + (1 − x)·F1)): positive on (0, 0.02)
+    only, peak 1e-4 rad at x = 0.01. The turning point is returned; the samples alone (none
+    lies inside (0, 0.02)) give −1, and the impact would be lost. Kills compiled.py:431's 4177a70e
+    (the turning point tried for every guard but the impact's), which no whole run reached: the
+    step after an event starts short enough for the samples to see the excursion."""
+    from rocking.models.modes import IMPACT
+    from rocking.simulation import prepare
+    from rocking.solver import compiled as C
+
+    p, args = prepare(rk.System(statue=rk.Statue(width=0.4, height=1.6, mass=80.0)),
+                      rk.Harmonic(amplitude=1.0, frequency=1.0, cycles=1), options=rk.Options(gravity=9.81))
+    sig_h, sig_v, breakpoints, t0, t_end = args[1:6]
+    loc = C._piece(C._piece_table(sig_h, sig_v, breakpoints, t0, t_end), 0)
+    y0 = np.zeros(C.N_STATE)
+    F = np.zeros((7, C.N_STATE))
+    F[0, 2], F[1, 2] = -0.98, 1.0
+    work, gbuf = np.empty(C.N_STATE), np.empty(C.N_GUARDS)
+    for s, sign in ((1, 1.0), (-1, -1.0)):
+        Fs = sign * F
+        x = C._positive_inside(p, 0, s, y0, Fs, 0.1, loc, 0.3, False, work, gbuf, IMPACT, 0.01)
+        assert x == 0.01
+        assert max(s * (sign * (k / 32) * (0.02 - k / 32)) for k in range(1, 32)) < 0.0  # the samples miss it
+    # with no turning point in the step, the samples are all there is
+    assert C._positive_inside(p, 0, 1, y0, F, 0.1, loc, 0.3, False, work, gbuf, IMPACT, -1.0) == -1.0
