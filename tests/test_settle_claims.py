@@ -4,7 +4,9 @@ random pulses and harmonics, each run is cut at a random time after (or before) 
 stops while the statue still moves.
 
 * Every run the rule calls settled is run again without the cut, until it comes to rest or
-  falls: none may fall. That is what the verdict "did not overturn" promises.
+  falls: none may fall. That is what the verdict "did not overturn" promises. (A few, lone
+  blocks of a low restitution, then meet an impact that needs more floor friction than μs, which
+  the two-body model cannot follow: that longer run is undetermined, not a fall.)
 * The flag is recomputed here from the saved last state, with the energy written out below
   (T + V of the statue and its pedestal from u̇, θ, θ̇; of a free block from its pose and
   velocity), not the library's: settled exactly when the floor has stopped, the statue is inside
@@ -90,20 +92,21 @@ def _system(rng):
 
 def test_no_statue_called_settled_falls_when_run_on_and_the_flag_is_its_energy_against_its_barrier():
     rng = np.random.default_rng(20261207)
-    settled = unsettled = compared = 0
+    settled = unsettled = compared = beyond = 0
     near_falls = []  # E/barrier of runs cut inside α, not settled, that fall later
     for _ in range(3000):
         system, can_slide, impact = _system(rng)
         st = system.statue
         alpha = math.atan2(st.width, st.height)
         motion = _motion(rng, G * math.tan(alpha) * rng.uniform(1.0, 4.0), rng.uniform(0.5, 4.0))
-        options = rk.Options(gravity=G, impact=impact)
         before_end = rng.random() < 0.15  # cut while the floor still moves: never settled
         # cut on a saved sample (every 0.01 s), so that the last one is the state the rule judged
         steps = math.ceil(motion.duration / DT)
         steps = int(steps * rng.uniform(0.3, 0.99)) if before_end else steps + int(rng.integers(0, 100))
+        normal_force = "paper" if rng.random() < 0.2 else "full"  # the paper's N = M·g: as dissipative
+        options = rk.Options(gravity=G, impact=impact, normal_force=normal_force)
         cut = rk.simulate(system, motion, duration=steps * DT, throw=False,
-                          options=rk.Options(gravity=G, impact=impact, save_dt=DT))
+                          options=rk.Options(gravity=G, impact=impact, normal_force=normal_force, save_dt=DT))
         if cut.status != "still_moving":
             continue
         assert cut.t[-1] == cut.end_time
@@ -118,7 +121,12 @@ def test_no_statue_called_settled_falls_when_run_on_and_the_flag_is_its_energy_a
             settled += 1
             assert cut.verdict.startswith("did not overturn; still moving")
             full = rk.simulate(system, motion, options=options, save=False, throw=False)
-            assert not full.overturned and full.status in ("completed", "still_moving"), (system, motion, impact)
+            # (run on, a lone block of a low restitution may meet an impact that needs more floor
+            # friction than μs, which the two-body model cannot follow: undetermined from there on,
+            # though the energy bound holds for any impact that takes energy)
+            assert not full.overturned, (system, motion, impact)
+            assert full.status in ("completed", "still_moving", "impact_beyond_friction"), (system, motion, impact)
+            beyond += full.status == "impact_beyond_friction"
         else:
             unsettled += 1
             assert cut.verdict.startswith("undetermined")
@@ -126,7 +134,7 @@ def test_no_statue_called_settled_falls_when_run_on_and_the_flag_is_its_energy_a
                 if rk.simulate(system, motion, options=options, save=False, throw=False).overturned:
                     near_falls.append(ratio)
     # enough of both kinds to mean something, and falls from just above the barrier
-    assert settled > 400 and unsettled > 150 and compared > settled + unsettled - 5
+    assert settled > 400 and unsettled > 150 and compared > settled + unsettled - 5 and beyond < 5
     assert len(near_falls) >= 3 and min(near_falls) < 1.002, near_falls
 
 
