@@ -2,6 +2,7 @@
 stack study, the design of both faces of the pedestal (which face does the work; a statue that
 slides to the pedestal's edge is not safe), and fragility and spectra of stacks."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -524,6 +525,16 @@ def test_a_one_block_stack_left_rocking_is_settled_only_inside_its_barrier():
     assert falling.energy[-1] - falling.initial_energy < 0
     assert not falling.settled_by_energy
     assert simulate_stack(block, pulse, options=OPTS).status == "overturned"  # (it does fall)
+    # the same saved at the start, its events and its end only: the sample before the end is
+    # inside α, the end is not, and the rule reads the end's rotation
+    sparse = simulate_stack(block, pulse, duration=pulse.duration + 0.01,
+                            options=dataclasses.replace(OPTS, save_dt=10.0))
+    assert abs(sparse.rotation[-2, 0]) < alpha < abs(sparse.rotation[-1, 0]) and not sparse.settled_by_energy
+    # cut exactly as the pulse ends: the floor has stopped, and the block rocks gently on
+    pulse3 = rk.SinePulse(amplitude=4.0, frequency=3.0)
+    at_end = simulate_stack(block, pulse3, duration=pulse3.duration, options=OPTS)
+    assert at_end.status == "still_moving" and at_end.end_time == pulse3.duration
+    assert at_end.settled_by_energy
     two = Stack(blocks=(Block(width=1.0, height=0.3, mass=50.0), Block(width=0.3, height=1.5, mass=1.0)),
                 interfaces=(Interface(), Interface()))
     rocking_on_top = simulate_stack(two, rk.SinePulse(amplitude=4.0, frequency=3.0), duration=0.5, options=OPTS)
