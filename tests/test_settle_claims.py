@@ -22,6 +22,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 
 import rocking as rk
 from rocking.stack import Block, Interface, Stack
@@ -259,3 +260,23 @@ def test_a_statue_below_its_barrier_by_less_than_its_ledger_error_is_not_settled
     ledger = r.raw_summary[C.S_BALANCE]
     assert energy < barrier < energy + ledger, (barrier - energy, ledger)
     assert not r.settled_by_energy
+
+
+def test_a_block_sliding_flat_is_settled_once_its_energy_at_the_end_is_below_its_barrier():
+    """A 0.3 × 1.5 m block on a floor of μ = 0.1 (below its rocking threshold tan α = 0.2) slides
+    flat after a 3 m/s², 0.5 s rectangle pulse, slowing at μ·g. Its kinetic energy counts: at
+    0.55 s it is still above the barrier m·g·(R − h), at 1.05 s below it, so a run cut at 1.05 s
+    is settled, by the energy at its end, although the sample before (0.55 s, saved every
+    0.55 s) was above. Kills stack/simulate.py:281's 0cd24366 (the energy read one sample early).
+    (Saved on the grid, at its events and at its end.)"""
+    block = Block(width=0.3, height=1.5, mass=1.0)
+    friction = rk.Friction(static=0.1, kinetic=0.1)
+    stack = Stack(blocks=(block,), interfaces=(Interface(friction=friction),))
+    barrier = _barrier(0.3, 1.5, 1.0)
+    r = simulate_stack(stack, rk.RectanglePulse(amplitude=3.0, width=0.5), duration=1.05,
+                       options=rk.Options(gravity=G, save_dt=0.55))
+    assert r.status == "still_moving" and r.t[-1] == r.end_time == 1.05 and r.t[-2] == pytest.approx(0.55)
+    assert np.all(r.pose[:, 0, 2] == 0.0)  # flat throughout
+    energies = [_block_energy_above_rest(block, r.pose[i, 0], r.velocity[i, 0]) for i in (-2, -1)]
+    assert energies[1] < barrier < energies[0], (energies, barrier)
+    assert r.settled_by_energy
