@@ -267,8 +267,7 @@ def test_a_block_sliding_flat_is_settled_once_its_energy_at_the_end_is_below_its
     flat after a 3 m/s², 0.5 s rectangle pulse, slowing at μ·g. Its kinetic energy counts: at
     0.55 s it is still above the barrier m·g·(R − h), at 1.05 s below it, so a run cut at 1.05 s
     is settled, by the energy at its end, although the sample before (0.55 s, saved every
-    0.55 s) was above. Kills stack/simulate.py:281's 0cd24366 (the energy read one sample early).
-    (Saved on the grid, at its events and at its end.)"""
+    0.55 s) was above. Kills stack/simulate.py:281's 0cd24366 (the energy read one sample early)."""
     block = Block(width=0.3, height=1.5, mass=1.0)
     friction = rk.Friction(static=0.1, kinetic=0.1)
     stack = Stack(blocks=(block,), interfaces=(Interface(friction=friction),))
