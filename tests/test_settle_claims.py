@@ -13,8 +13,9 @@ stops while the statue still moves.
   ±α, its energy above rest is below the barrier m·g·(R − h) and no impact law that can add
   energy acts on a face that slips. Runs within 1e-8 of the barrier are not compared (the rule
   adds the ledger's error, ~1e-12 of the energy).
-* The sample probes the barrier: some runs cut inside α with energy within 2 % above the
-  barrier do fall later, so a rule 2 % too lax would call one of them settled.
+* The sample probes the barrier: some runs cut inside α with energy within 0.2 % above the
+  barrier fall later (1.0008 times it, the closest), so a rule 0.1 % too lax calls a run settled
+  that is not, and fails the flag's comparison.
 """
 
 from __future__ import annotations
@@ -101,7 +102,7 @@ def test_no_statue_called_settled_falls_when_run_on_and_the_flag_is_its_energy_a
         alpha = math.atan2(st.width, st.height)
         motion = _motion(rng, G * math.tan(alpha) * rng.uniform(1.0, 4.0), rng.uniform(0.5, 4.0))
         before_end = rng.random() < 0.15  # cut while the floor still moves: never settled
-        # cut on a saved sample (every 0.01 s), so that the last one is the state the rule judged
+        # cut a whole number of saved steps (0.01 s) after the start: the rule judges the last row
         steps = math.ceil(motion.duration / DT)
         steps = int(steps * rng.uniform(0.3, 0.99)) if before_end else steps + int(rng.integers(0, 100))
         normal_force = "paper" if rng.random() < 0.2 else "full"  # the paper's N = M·g: as dissipative
