@@ -44,3 +44,20 @@ def on_grid(response, dt):
     _, first = np.unique(k[on], return_index=True)
     rows = np.flatnonzero(on)[first]
     return response.t[rows], response.theta[rows], response.u[rows]
+
+
+def free_rocking(system, energy_over_barrier, theta0, cut=0.06, options=None, duration=None, motion=None):
+    """A statue set rocking at θ0 (rad) away from upright, with the angular velocity that gives it
+    ``energy_over_barrier`` × the overturning barrier (T + V by the closed forms of a block on a
+    fixed corner: V = m·g·(R·cos(α − θ) − h), T = ½·(4/3)·m·R²·θ̇²), on a floor that never moves
+    (a rectangle pulse of zero amplitude, 0.01 s long), cut ``cut`` s later while it still
+    rocks outwards."""
+    st = system.statue
+    g = 9.5
+    m, R, alpha, h = st.mass, math.hypot(st.b, st.h), math.atan2(st.b, st.h), st.h
+    barrier = m * g * (R - h)
+    v0 = m * g * (R * math.cos(alpha - theta0) - h)
+    rate = math.sqrt(max(energy_over_barrier * barrier - v0, 0.0) / (0.5 * 4.0 / 3.0 * m * R * R))
+    opts = options or rk.Options(gravity=g, free_time_limit=cut - 0.01)
+    return rk.simulate(system, motion or rk.RectanglePulse(amplitude=0.0, width=0.01), options=opts,
+                       duration=duration, initial_rotation=theta0, initial_angular_velocity=rate)

@@ -19,7 +19,7 @@ from rocking.cli import main
 from rocking.solver.crosscheck import simulate_crosscheck
 from rocking.simulation import ResourceLimitError
 
-from helpers import alone, block
+from helpers import alone, block, free_rocking
 
 G = 9.81
 OPTS = rk.Options(gravity=G)
@@ -352,23 +352,6 @@ def test_a_spectrum_never_shows_safe_what_a_longer_run_shows_failing(criterion):
     assert np.all(b_strict <= b_full * (1 + 1e-12))
 
 
-def _free_rocking(system, energy_over_barrier, theta0, cut=0.06, options=None, duration=None, motion=None):
-    """A statue set rocking at θ0 (rad) away from upright, with the angular velocity that gives it
-    ``energy_over_barrier`` × the overturning barrier (T + V by the closed forms of a block on a
-    fixed corner: V = m·g·(R·cos(α − θ) − h), T = ½·(4/3)·m·R²·θ̇²), on a floor that never moves
-    (a rectangle pulse of zero amplitude, 0.01 s long), cut ``cut`` s later while it still
-    rocks outwards."""
-    st = system.statue
-    g = 9.5
-    m, R, alpha, h = st.mass, math.hypot(st.b, st.h), math.atan2(st.b, st.h), st.h
-    barrier = m * g * (R - h)
-    v0 = m * g * (R * math.cos(alpha - theta0) - h)
-    rate = math.sqrt(max(energy_over_barrier * barrier - v0, 0.0) / (0.5 * 4.0 / 3.0 * m * R * R))
-    opts = options or rk.Options(gravity=g, free_time_limit=cut - 0.01)
-    return rk.simulate(system, motion or rk.RectanglePulse(amplitude=0.0, width=0.01), options=opts,
-                       duration=duration, initial_rotation=theta0, initial_angular_velocity=rate)
-
-
 def test_a_statue_still_rocking_with_less_energy_than_its_barrier_is_settled_and_one_above_is_not():
     """The solver's rule (``settled_by_energy``, slot ``S_SETTLED``) against the barrier
     m·g·R·(1 − cos α) written here. A 0.3 × 1.5 m, 2 kg statue rocks freely (g = 9.5) with
@@ -384,8 +367,8 @@ def test_a_statue_still_rocking_with_less_energy_than_its_barrier_is_settled_and
 
     statue = rk.Statue(width=0.3, height=1.5, mass=2.0)
     alpha = math.atan(0.2)
-    below = _free_rocking(rk.System(statue=statue), 1 - 1e-7, 0.3 * alpha)
-    above = _free_rocking(rk.System(statue=statue), 1 + 1e-7, 0.3 * alpha)
+    below = free_rocking(rk.System(statue=statue), 1 - 1e-7, 0.3 * alpha)
+    above = free_rocking(rk.System(statue=statue), 1 + 1e-7, 0.3 * alpha)
     for r, settled in ((below, True), (above, False)):
         assert r.status == "still_moving" and 0.3 * alpha < r.theta[-1] < 0.5 * alpha
         assert r.t[-1] == pytest.approx(0.06, abs=1e-12)
@@ -395,12 +378,12 @@ def test_a_statue_still_rocking_with_less_energy_than_its_barrier_is_settled_and
                              "needs to overturn, on a floor that has stopped")
     assert not any("still moving" in w for w in below.warnings)
     assert above.verdict == "undetermined: still moving at t = 0.060 s"
-    past = _free_rocking(rk.System(statue=statue), 0.0, 1.001 * alpha)
+    past = free_rocking(rk.System(statue=statue), 0.0, 1.001 * alpha)
     assert past.status == "still_moving" and past.theta[-1] > alpha and not past.settled_by_energy
-    moving_floor = _free_rocking(rk.System(statue=statue), 0.5, 0.3 * alpha, duration=0.06,
+    moving_floor = free_rocking(rk.System(statue=statue), 0.5, 0.3 * alpha, duration=0.06,
                                  motion=rk.RectanglePulse(amplitude=0.0, width=1.0))
     assert moving_floor.status == "still_moving" and not moving_floor.settled_by_energy
-    stopped_floor = _free_rocking(rk.System(statue=statue), 0.5, 0.3 * alpha, duration=0.06)
+    stopped_floor = free_rocking(rk.System(statue=statue), 0.5, 0.3 * alpha, duration=0.06)
     assert stopped_floor.status == "still_moving" and stopped_floor.settled_by_energy
     # a record whose floor stops after 0.01 s, and the same samples cut from a longer record by
     # ``trimmed``: a window, whose floor goes on in the real record
@@ -409,12 +392,12 @@ def test_a_statue_still_rocking_with_less_energy_than_its_barrier_is_settled_and
     window = GroundMotion(time=np.linspace(0.0, 1.0, 101), values=np.zeros(101), name="still").trimmed(0.01)
     whole = GroundMotion(time=window.time, values=window.values, name="still")
     for motion, settled in ((whole, True), (window, False)):
-        r = _free_rocking(rk.System(statue=statue), 0.5, 0.3 * alpha, motion=motion)
+        r = free_rocking(rk.System(statue=statue), 0.5, 0.3 * alpha, motion=motion)
         assert r.status == "still_moving" and r.settled_by_energy is settled
     sliding = rk.System(statue=statue, pedestal=rk.Pedestal(mass=5.0, friction=rk.Friction(static=0.3, kinetic=0.2)))
     held = rk.System(statue=statue)  # on the floor, which it never slides on (no friction given)
     for system, impact, settled in ((sliding, "coulomb", True), (sliding, "paper", False), (held, "paper", True)):
-        r = _free_rocking(system, 0.5, 0.3 * alpha, options=rk.Options(gravity=9.5, free_time_limit=0.05,
+        r = free_rocking(system, 0.5, 0.3 * alpha, options=rk.Options(gravity=9.5, free_time_limit=0.05,
                                                                       impact=impact))
         assert r.status == "still_moving" and r.settled_by_energy is settled, (impact, system.floor_friction)
 

@@ -29,6 +29,8 @@ import rocking as rk
 from rocking.stack import Block, Interface, Stack
 from rocking.stack.simulate import simulate_stack
 
+from helpers import free_rocking
+
 G = 9.81
 BAND = 1e-8  # relative distance from the barrier below which the flag is not compared
 DT = 0.01  # s, between saved samples
@@ -140,6 +142,17 @@ def test_no_statue_called_settled_falls_when_run_on_and_the_flag_is_its_energy_a
     assert len(near_falls) >= 3 and min(near_falls) < 1.002, near_falls
 
 
+def _bisect(lo, hi, below, iterations=80):
+    """The bracket [lo, hi] narrowed, for as long as the floats allow, around where ``below(x)``
+    turns from true (at lo) to false (at hi)."""
+    for _ in range(iterations):
+        mid = 0.5 * (lo + hi)
+        if mid in (lo, hi):
+            break
+        lo, hi = (mid, hi) if below(mid) else (lo, mid)
+    return lo, hi
+
+
 def _block_energy_above_rest(block, pose, velocity):
     """½·m·(Ẋ² + Ẏ²) + ½·I·Θ̇² + m·g·(Y − H/2) of a free rectangle (I = m(B² + H²)/12), J."""
     m = block.mass
@@ -201,9 +214,7 @@ def test_a_one_block_stack_is_settled_just_below_its_barrier_and_not_just_above(
 
     lo, hi = 6.5, 7.0  # 0.96 and 1.01 of the barrier
     assert cut(lo)[1] < 1.0 < cut(hi)[1]
-    for _ in range(40):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if cut(mid)[1] < 1.0 else (lo, mid)
+    lo, hi = _bisect(lo, hi, lambda a: cut(a)[1] < 1.0, iterations=40)
     below, ratio_below = cut(lo - 2e-5)
     above, ratio_above = cut(hi + 2e-5)
     assert 1 - 1e-5 < ratio_below < 1 - 1e-7 and 1 + 1e-7 < ratio_above < 1 + 1e-5, (ratio_below, ratio_above)
@@ -212,12 +223,11 @@ def test_a_one_block_stack_is_settled_just_below_its_barrier_and_not_just_above(
     assert below.settled_by_energy and not above.settled_by_energy
     # To the last bit of the amplitude, on the engine's own energy: just below the barrier, by
     # less than the run's ledger error (~6e-12 J), which the rule adds as its margin: not settled
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        if mid in (lo, hi):
-            break
-        r = cut(mid)[0]
-        lo, hi = (mid, hi) if r.energy[-1] - r.initial_energy < barrier else (lo, mid)
+    def below(amplitude):
+        r = cut(amplitude)[0]
+        return r.energy[-1] - r.initial_energy < barrier
+
+    lo, hi = _bisect(lo, hi, below)
     last = cut(lo)[0]
     energy, ledger = last.energy[-1] - last.initial_energy, np.max(np.abs(last.balance_error()))
     assert energy < barrier < energy + ledger, (barrier - energy, ledger)
@@ -235,28 +245,17 @@ def test_a_statue_below_its_barrier_by_less_than_its_ledger_error_is_not_settled
     from rocking.solver import compiled as C
 
     statue = rk.Statue(width=0.3, height=1.5, mass=2.0)
-    g, theta0 = 9.5, 0.3 * math.atan(0.2)
-    m, radius, h = 2.0, math.hypot(0.15, 0.75), 0.75
-    barrier = m * g * (radius - h)
-    v0 = m * g * (radius * math.cos(math.atan(0.2) - theta0) - h)
-    inertia = 4.0 / 3.0 * m * radius**2
+    barrier = 2.0 * 9.5 * (math.hypot(0.15, 0.75) - 0.75)
 
     def cut(q):
-        rate = math.sqrt((q * barrier - v0) / (0.5 * inertia))
-        r = rk.simulate(rk.System(statue=statue), rk.RectanglePulse(amplitude=0.0, width=0.01),
-                        options=rk.Options(gravity=g, free_time_limit=0.05), initial_rotation=theta0,
-                        initial_angular_velocity=rate)
+        r = free_rocking(rk.System(statue=statue), q, 0.3 * math.atan(0.2))
         assert r.status == "still_moving" and r.t[-1] == r.end_time
         y = r.state[-1]
         return r, mechanical_energy(r.parameters, 1 if y[2] >= 0 else -1, y[1], y[2], y[3])
 
     lo, hi = 1 - 1e-12, 1 + 1e-12
     assert cut(lo)[1] < barrier < cut(hi)[1]
-    for _ in range(80):
-        mid = 0.5 * (lo + hi)
-        if mid in (lo, hi):
-            break
-        lo, hi = (mid, hi) if cut(mid)[1] < barrier else (lo, mid)
+    lo, hi = _bisect(lo, hi, lambda q: cut(q)[1] < barrier)
     r, energy = cut(lo)
     ledger = r.raw_summary[C.S_BALANCE]
     assert energy < barrier < energy + ledger, (barrier - energy, ledger)

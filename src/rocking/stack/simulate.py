@@ -269,7 +269,7 @@ def cannot_overturn(response: StackResponse, t_floor_end: float, options: Option
     has no such simple bound (which block falls, over which corner, how high the others ride):
     it stays undetermined."""
     stack = response.stack
-    if stack.n != 1 or len(response.t) == 0:
+    if stack.n != 1:
         return False
     if response.end_time < t_floor_end:
         return False
